@@ -219,6 +219,85 @@ inline Point bend_point(const Point& p, double length, double angle)
   return Point(R - rr * std::cos(theta), p.y(), rr * std::sin(theta));
 }
 
+/// Unit icosphere whose vertices are rotated about the z axis by `angle` * z: the surface is
+/// still the unit sphere but the triangles are sheared into long, obtuse ones (a mesh on which
+/// the plain cotangent Laplacian is inaccurate; used by the intrinsic Delaunay tests).
+inline Mesh twisted_sphere(int levels, double angle)
+{
+  return transformed(icosphere(levels), [angle](const Point& p) {
+    const double a = angle * p.z(), c = std::cos(a), s = std::sin(a);
+    return Point(c * p.x() - s * p.y(), s * p.x() + c * p.y(), p.z());
+  });
+}
+
+/// Unit icosphere with every vertex moved randomly (a fixed pseudo-random sequence in vertex
+/// order, up to `amount` times the edge length in each coordinate) and projected back onto the
+/// sphere.
+inline Mesh jittered_sphere(int levels, double amount)
+{
+  const double edge = 1.1 / std::pow(2.0, levels);
+  unsigned state = 12345u;
+  auto next = [&state]() {  // a small LCG: identical on every platform
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) * (2.0 / 16777216.0) - 1.0;  // in [-1, 1)
+  };
+  return transformed(icosphere(levels), [&](const Point& p) {
+    const double x = p.x() + amount * edge * next(), y = p.y() + amount * edge * next(),
+                 z = p.z() + amount * edge * next();
+    const double l = std::sqrt(x * x + y * y + z * z);
+    return Point(x / l, y / l, z / l);
+  });
+}
+
+/// Flat grid of (nx+1) x (ny+1) vertices on [0, sx] x [0, sy] whose squares are all split along
+/// the same diagonal: every interior vertex has valence 6 (a regular triangulation up to shear).
+/// Vertex (i, j) has index j * (nx + 1) + i. When `hole` is true, the faces of the squares with
+/// nx/3 <= i < 2nx/3 and ny/3 <= j < 2ny/3 are left out (a grid with a hole), and the vertices
+/// left without a face are dropped (the others keep their order).
+inline Mesh regular_grid(int nx, int ny, double sx = 1.0, double sy = 1.0, bool hole = false)
+{
+  std::vector<Point> pts;
+  for(int j = 0; j <= ny; ++j)
+    for(int i = 0; i <= nx; ++i) pts.emplace_back(sx * i / nx, sy * j / ny, 0.0);
+  std::vector<std::array<int, 3> > tris;
+  auto id = [&](int i, int j) { return j * (nx + 1) + i; };
+  for(int j = 0; j < ny; ++j)
+    for(int i = 0; i < nx; ++i)
+    {
+      if(hole && 3 * i >= nx && 3 * i < 2 * nx && 3 * j >= ny && 3 * j < 2 * ny) continue;
+      tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  std::vector<int> used(pts.size(), -1);
+  for(const auto& t : tris)
+    for(int v : t) used[v] = 0;
+  std::vector<Point> kept;
+  for(std::size_t v = 0; v < pts.size(); ++v)
+    if(used[v] == 0)
+    {
+      used[v] = static_cast<int>(kept.size());
+      kept.push_back(pts[v]);
+    }
+  for(auto& t : tris)
+    for(int& v : t) v = used[v];
+  return mesh_from_soup(kept, tris);
+}
+
+/// The disjoint union of two meshes (the vertices of `b` come after those of `a`).
+inline Mesh disjoint_union(const Mesh& a, const Mesh& b)
+{
+  Mesh out = a;
+  std::map<Vertex, Vertex> to;
+  for(Vertex v : b.vertices()) to[v] = out.add_vertex(b.point(v));
+  for(auto f : b.faces())
+  {
+    std::vector<Vertex> vs;
+    for(Vertex v : b.vertices_around_face(b.halfedge(f))) vs.push_back(to[v]);
+    out.add_face(vs);
+  }
+  return out;
+}
+
 } // namespace smc_test
 
 #endif // SMC_TEST_MESHES_H

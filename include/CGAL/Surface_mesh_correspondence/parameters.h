@@ -56,6 +56,9 @@ namespace Surface_mesh_correspondence {
   X(number_of_rings_t, number_of_rings, number_of_rings)                                 \
   X(number_of_landmarks_t, number_of_landmarks, number_of_landmarks)                     \
   X(seed_vertices_t, seed_vertices, seed_vertices)                                       \
+  X(maximum_distance_t, maximum_distance, maximum_distance)                              \
+  X(target_vertices_t, target_vertices, target_vertices)                                 \
+  X(geodesic_method_t, geodesic_method, geodesic_method)                                 \
   /* coupled refinement */                                                               \
   X(number_of_candidates_t, number_of_candidates, number_of_candidates)                  \
   X(ring_schedule_t, ring_schedule, ring_schedule)                                       \
