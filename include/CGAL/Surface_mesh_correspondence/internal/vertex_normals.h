@@ -1,0 +1,56 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Area-weighted vertex normals of an Indexed_mesh, oriented by the mesh's triangle orientation.
+
+#ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_VERTEX_NORMALS_H
+#define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_VERTEX_NORMALS_H
+
+#include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+
+#include <cmath>
+
+namespace CGAL {
+namespace Surface_mesh_correspondence {
+namespace internal {
+
+/// Unit vertex normals (n x 3, row v = normal of vertex v): the sum of the normals of the incident
+/// triangles weighted by their areas, i.e. the normalised sum of the cross products
+/// \f$ (p_b - p_a) \times (p_c - p_a) \f$ of the incident triangles (a, b, c). The normals point
+/// to the side from which the triangles are seen counter-clockwise (outwards for an outward
+/// oriented closed mesh). A vertex whose weighted sum vanishes (its fan folds back onto itself)
+/// or that belongs to no triangle gets the zero vector.
+inline Indexed_mesh::Points vertex_normals(const Indexed_mesh& m)
+{
+  const int n = m.number_of_vertices();
+  Indexed_mesh::Points normals = Indexed_mesh::Points::Zero(n, 3);
+  for(int f = 0; f < m.number_of_triangles(); ++f)
+  {
+    const int a = m.triangles(f, 0), b = m.triangles(f, 1), c = m.triangles(f, 2);
+    const Eigen::RowVector3d pa = m.points.row(a);
+    const Eigen::RowVector3d twice_area_normal =
+        (m.points.row(b) - pa).cross(m.points.row(c) - pa);
+    normals.row(a) += twice_area_normal;
+    normals.row(b) += twice_area_normal;
+    normals.row(c) += twice_area_normal;
+  }
+  for(int v = 0; v < n; ++v)
+  {
+    const double length = normals.row(v).norm();
+    // Relative test: the sum is tiny compared with the incident triangle areas when it cancels.
+    double scale = 0;
+    for(int k = m.triangle_offsets[v]; k < m.triangle_offsets[v + 1]; ++k)
+      scale += 2 * m.triangle_areas[m.incident_triangles[k]];
+    if(length > 1e-12 * scale && length > 0)
+      normals.row(v) /= length;
+    else
+      normals.row(v).setZero();
+  }
+  return normals;
+}
+
+} // namespace internal
+} // namespace Surface_mesh_correspondence
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_VERTEX_NORMALS_H
