@@ -1,0 +1,284 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Distance oracles: the dense matrix and the local rows equal the (symmetrised) fast marching
+// values they are made of, the far estimate of the local oracle stays within its documented
+// bound, both are close to exact geodesics, and parallel builds equal sequential ones.
+
+#include <CGAL/Surface_mesh_correspondence/distance_oracle.h>
+
+#include "test_meshes.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace smc = CGAL::Surface_mesh_correspondence;
+namespace smci = CGAL::Surface_mesh_correspondence::internal;
+using namespace smc_test;
+
+namespace {
+
+// All fast marching fields of a mesh: fields[k][l] = d_k(l).
+std::vector<std::vector<double> > fast_marching_fields(const smci::Indexed_mesh& m)
+{
+  smci::Fast_marching_geometry g(m);
+  smci::Fast_marching_workspace ws(g);
+  std::vector<std::vector<double> > f(m.number_of_vertices());
+  for(int k = 0; k < m.number_of_vertices(); ++k)
+  {
+    ws.run(k);
+    ws.copy_distances(f[k]);
+  }
+  return f;
+}
+
+Mesh bumpy_capsule()
+{
+  return transformed(capsule(28, 7, 14, 1.0, 4.0), [](const Point& p) {
+    return Point(p.x() * (1 + 0.25 * std::sin(2.5 * p.z())), p.y() * (1 + 0.1 * p.x()), p.z());
+  });
+}
+
+template <typename F>
+std::string error_of(F&& f)
+{
+  try
+  {
+    f();
+  }
+  catch(const smc::Error& e)
+  {
+    return e.what();
+  }
+  return "no exception";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+} // namespace
+
+BOOST_AUTO_TEST_SUITE(distance_oracles)
+
+// The dense oracle is the symmetrised fast marching matrix, close to exact geodesics; parallel
+// and sequential builds are identical; the row batch equals single queries.
+BOOST_AUTO_TEST_CASE(dense_oracle)
+{
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(bumpy_capsule());
+  const int n = m.number_of_vertices();
+  const auto f = fast_marching_fields(m);
+  const smc::Dense_distance_oracle dense = smc::Dense_distance_oracle::build<CGAL::Sequential_tag>(m);
+  BOOST_TEST(dense.number_of_vertices() == n);
+  int wrong = 0;
+  for(int k = 0; k < n; ++k)
+    for(int l = 0; l < n; ++l)
+    {
+      const float expected = k == l ? 0.f : 0.5f * (static_cast<float>(f[k][l]) + static_cast<float>(f[l][k]));
+      if(dense.distance(k, l) != expected || dense.distance(k, l) != dense.distance(l, k)) ++wrong;
+    }
+  BOOST_TEST(wrong == 0);
+
+#ifdef CGAL_LINKED_WITH_TBB
+  const smc::Dense_distance_oracle parallel = smc::Dense_distance_oracle::build<CGAL::Parallel_tag>(m);
+  BOOST_TEST(std::equal(dense.row(0), dense.row(0) + std::size_t(n) * n, parallel.row(0)));
+#endif
+
+  const std::vector<int> ls = {3, 0, n - 1, 17, 3};
+  std::vector<float> out(ls.size());
+  dense.distances(11, ls.data(), ls.size(), out.data());
+  for(std::size_t i = 0; i < ls.size(); ++i) BOOST_TEST(out[i] == dense.distance(11, ls[i]));
+
+  // Against exact geodesics from a few sources.
+  smci::Exact_geodesic_solver exact(m);
+  double error = 0, scale = 0;
+  int count = 0;
+  for(int s : {0, n / 3, n - 1})
+  {
+    std::vector<double> de;
+    exact.distances(s, de);
+    for(int v = 0; v < n; ++v)
+    {
+      error += std::abs(dense.distance(s, v) - de[v]);
+      scale = std::max(scale, de[v]);
+      ++count;
+    }
+  }
+  error /= count;
+  BOOST_TEST_MESSAGE("dense oracle: mean |error| " << error << " (diameter " << scale << ")");
+  BOOST_TEST(error < 0.005 * scale);
+}
+
+// Heat method and exact rows: the dense oracle built with them matches the solvers.
+BOOST_AUTO_TEST_CASE(dense_oracle_other_methods)
+{
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(icosphere(1));
+  const int n = m.number_of_vertices();
+  smci::Exact_geodesic_solver exact(m);
+  smci::Heat_method_solver heat(m);
+  std::vector<std::vector<double> > de(n), dh(n);
+  for(int k = 0; k < n; ++k)
+  {
+    exact.distances(k, de[k]);
+    heat.distances(k, dh[k]);
+  }
+  const auto oe = smc::Dense_distance_oracle::build(m, smc::Geodesic_method::exact);
+  const auto oh = smc::Dense_distance_oracle::build(m, smc::Geodesic_method::heat_method);
+  double worst_e = 0, worst_h = 0;
+  for(int k = 0; k < n; ++k)
+    for(int l = 0; l < n; ++l)
+    {
+      const double e = k == l ? 0 : 0.5f * (static_cast<float>(de[k][l]) + static_cast<float>(de[l][k]));
+      const double h = k == l ? 0 : 0.5f * (static_cast<float>(dh[k][l]) + static_cast<float>(dh[l][k]));
+      worst_e = std::max(worst_e, std::abs(oe.distance(k, l) - e));
+      worst_h = std::max(worst_h, std::abs(oh.distance(k, l) - h));
+    }
+  BOOST_TEST(worst_e == 0.0);
+  BOOST_TEST(worst_h == 0.0);
+}
+
+// Local rows hold exactly the pairs within the radius, with the symmetrised fast marching
+// values; beyond it the landmark estimate lies between the distance and the distance plus twice
+// the covering radius (up to the fast marching's own triangle-inequality defects).
+BOOST_AUTO_TEST_CASE(local_oracle)
+{
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(bumpy_capsule());
+  const int n = m.number_of_vertices();
+  const auto f = fast_marching_fields(m);
+  smci::Edge_length_graph graph(m);
+  const double radius = 4 * graph.mean_edge_length;
+  const smc::Local_distance_oracle local = smc::Local_distance_oracle::build(m, radius, 24);
+  BOOST_TEST(local.number_of_vertices() == n);
+  BOOST_TEST(local.number_of_landmarks() == 24);
+  BOOST_TEST(local.covering_radius() > 0.f);
+  const float R = static_cast<float>(radius);
+  int wrong_rows = 0, wrong_values = 0, outside_bound = 0, far_pairs = 0;
+  double far_error = 0, worst_undershoot = 0;
+  for(int k = 0; k < n; ++k)
+  {
+    int expected_size = 0;
+    for(int l = 0; l < n; ++l)
+    {
+      const bool in_k = f[k][l] <= radius, in_l = f[l][k] <= radius;
+      if(in_k) ++expected_size;
+      if(in_k != local.is_local(k, l)) ++wrong_rows;
+      if(k == l) continue;
+      if(in_k)
+      {
+        const float expected = in_l ? 0.5f * (static_cast<float>(f[k][l]) + static_cast<float>(f[l][k]))
+                                    : static_cast<float>(f[k][l]);
+        if(local.distance(k, l) != expected) ++wrong_values;
+      }
+      else
+      {
+        const double d = 0.5 * (f[k][l] + f[l][k]);
+        const double estimate = local.distance(k, l);
+        ++far_pairs;
+        far_error += estimate - d;
+        worst_undershoot = std::max(worst_undershoot, (d - estimate) / d);
+        if(estimate < R || estimate < d * (1 - 0.01) || estimate > d + 2 * local.covering_radius() + 0.01 * d)
+          ++outside_bound;
+      }
+    }
+    if(static_cast<int>(local.row_size(k)) != expected_size) ++wrong_rows;
+    for(std::size_t i = 1; i < local.row_size(k); ++i)
+      if(local.row_vertices(k)[i - 1] >= local.row_vertices(k)[i]) ++wrong_rows;
+  }
+  BOOST_TEST_MESSAGE("local oracle on " << n << " vertices: " << local.number_of_local_entries() / double(n)
+                     << " entries per row, covering radius " << local.covering_radius()
+                     << ", mean far overestimate " << far_error / far_pairs << " (R = " << R
+                     << "), worst relative underestimate " << worst_undershoot);
+  BOOST_TEST(wrong_rows == 0);
+  BOOST_TEST(wrong_values == 0);
+  BOOST_TEST(outside_bound == 0);
+
+  // Against exact geodesics (rows and far estimates together).
+  {
+    smci::Exact_geodesic_solver exact(m);
+    double error = 0, diameter = 0;
+    int count = 0;
+    for(int s : {1, n / 2, n - 2})
+    {
+      std::vector<double> de;
+      exact.distances(s, de);
+      for(int v = 0; v < n; ++v)
+      {
+        error += std::abs(local.distance(s, v) - de[v]);
+        diameter = std::max(diameter, de[v]);
+        ++count;
+      }
+    }
+    BOOST_TEST_MESSAGE("local oracle: mean |error| against exact " << error / count << " (diameter " << diameter << ")");
+    BOOST_TEST(error / count < 0.01 * diameter);
+  }
+
+  // Batch queries equal single ones; the diagonal is 0.
+  std::vector<int> ls(local.row_vertices(7), local.row_vertices(7) + local.row_size(7));
+  ls.push_back(n - 1);
+  ls.push_back(7);
+  std::vector<float> out(ls.size());
+  local.distances(7, ls.data(), ls.size(), out.data());
+  for(std::size_t i = 0; i < ls.size(); ++i) BOOST_TEST(out[i] == local.distance(7, ls[i]));
+  BOOST_TEST(local.distance(7, 7) == 0.f);
+
+#ifdef CGAL_LINKED_WITH_TBB
+  const smc::Local_distance_oracle parallel = smc::Local_distance_oracle::build<CGAL::Parallel_tag>(m, radius, 24);
+  int differences = 0;
+  for(int k = 0; k < n; ++k)
+    for(int l = 0; l < n; l += 3) differences += parallel.distance(k, l) != local.distance(k, l);
+  BOOST_TEST(differences == 0);
+#endif
+}
+
+// Several components: +infinity between them, finite inside each (every component gets a
+// landmark even when fewer are asked for).
+BOOST_AUTO_TEST_CASE(oracles_on_several_components)
+{
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(
+      disjoint_union(icosphere(2), transformed(icosphere(2), [](const Point& p) {
+                       return Point(p.x() + 5, p.y(), p.z());
+                     })));
+  const int n = m.number_of_vertices(), half = n / 2;
+  const auto dense = smc::Dense_distance_oracle::build(m);
+  const auto local = smc::Local_distance_oracle::build(m, 0.3, 1);
+  BOOST_TEST(local.number_of_landmarks() == 2);
+  for(int k = 0; k < n; k += 7)
+    for(int l = 0; l < n; l += 5)
+    {
+      const bool same = (k < half) == (l < half);
+      BOOST_TEST(std::isfinite(dense.distance(k, l)) == same);
+      BOOST_TEST(std::isfinite(local.distance(k, l)) == same);
+    }
+}
+
+// The FaceGraph builders read their named parameters; bad parameters throw.
+BOOST_AUTO_TEST_CASE(builders_and_parameters)
+{
+  const Mesh sm = icosphere(2);
+  const auto dense = smc::make_dense_distance_oracle(sm);
+  const auto heat = smc::make_dense_distance_oracle(sm, smc::parameters::geodesic_method(smc::Geodesic_method::heat_method));
+  BOOST_TEST(dense.number_of_vertices() == 162);
+  BOOST_TEST(dense.distance(0, 100) != heat.distance(0, 100));
+  BOOST_TEST(std::abs(dense.distance(0, 100) - heat.distance(0, 100)) < 0.05);
+
+  const auto local = smc::make_local_distance_oracle(sm, smc::parameters::number_of_landmarks(10, smc::parameters::local_radius(0.5)));
+  BOOST_TEST(local.local_radius() == 0.5f);
+  BOOST_TEST(local.number_of_landmarks() == 10);
+  const auto by_rings = smc::make_local_distance_oracle(sm, smc::parameters::number_of_rings(3));
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(sm);
+  BOOST_TEST(by_rings.local_radius() == static_cast<float>(3 * smci::Edge_length_graph(m).mean_edge_length),
+             boost::test_tools::tolerance(1e-6f));
+  BOOST_TEST(by_rings.number_of_landmarks() == std::min(162, smc::default_number_of_landmarks));
+  for(int l = 0; l < 162; ++l)
+    if(local.is_local(0, l)) BOOST_TEST(std::abs(local.distance(0, l) - dense.distance(0, l)) < 1e-3f);
+
+  BOOST_TEST(contains(error_of([&] { smc::make_local_distance_oracle(sm, smc::parameters::local_radius(-1.0)); }),
+                      "local radius"));
+  BOOST_TEST(contains(error_of([&] { smc::make_local_distance_oracle(sm, smc::parameters::number_of_landmarks(0)); }),
+                      "landmarks"));
+  const Mesh empty;
+  BOOST_TEST(contains(error_of([&] { smc::make_dense_distance_oracle(empty); }), "empty"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
