@@ -258,16 +258,25 @@ public:
   void distances(int k, const int* l, std::size_t count, float* out) const
   {
     const int* b = columns_.data() + offsets_[k];
-    const int* e = columns_.data() + offsets_[k + 1];
+    const std::size_t size = offsets_[k + 1] - offsets_[k];
     for(std::size_t i = 0; i < count; ++i)
     {
-      if(l[i] == k)
+      const int key = l[i];
+      if(key == k)
       {
         out[i] = 0.f;
         continue;
       }
-      const int* it = std::lower_bound(b, e, l[i]);
-      out[i] = (it != e && *it == l[i]) ? values_[it - columns_.data()] : far_estimate(k, l[i]);
+      // Branchless binary search (conditional moves): the rows are short and the keys random.
+      const int* base = b;
+      std::size_t length = size;
+      while(length > 1)
+      {
+        const std::size_t half = length / 2;
+        base = (base[half] <= key) ? base + half : base;
+        length -= half;
+      }
+      out[i] = (size > 0 && *base == key) ? values_[base - columns_.data()] : far_estimate(k, key);
     }
   }
 

@@ -67,6 +67,9 @@ namespace Surface_mesh_correspondence {
   X(number_of_outer_iterations_t, number_of_outer_iterations, number_of_outer_iterations)\
   X(trws_number_of_iterations_t, trws_number_of_iterations, trws_number_of_iterations)   \
   X(trws_relative_tolerance_t, trws_relative_tolerance, trws_relative_tolerance)         \
+  X(use_neighbor_matches_t, use_neighbor_matches, use_neighbor_matches)                  \
+  X(pairwise_rings_t, pairwise_rings, pairwise_rings)                                    \
+  X(stop_when_consistency_worsens_t, stop_when_consistency_worsens, stop_when_consistency_worsens) \
   /* automatic initialisation */                                                         \
   X(spectral_basis_size_t, spectral_basis_size, spectral_basis_size)                     \
   X(zoomout_final_size_t, zoomout_final_size, zoomout_final_size)                        \

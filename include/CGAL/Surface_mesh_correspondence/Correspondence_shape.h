@@ -1,0 +1,261 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The precomputed data of one shape for matching: flat mesh, Laplace-Beltrami spectrum,
+// descriptor stack, geodesic distance oracle, nearest-vertex search and the node order of the
+// MRFs. Built once per mesh, it is reused for every pair the mesh takes part in.
+
+#ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_CORRESPONDENCE_SHAPE_H
+#define CGAL_SURFACE_MESH_CORRESPONDENCE_CORRESPONDENCE_SHAPE_H
+
+#include <CGAL/Surface_mesh_correspondence/descriptor_stack.h>
+#include <CGAL/Surface_mesh_correspondence/distance_oracle.h>
+#include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/internal/dijkstra.h>
+#include <CGAL/Surface_mesh_correspondence/internal/nearest_vertex.h>
+#include <CGAL/Surface_mesh_correspondence/parameters.h>
+#include <CGAL/Surface_mesh_correspondence/spectrum.h>
+
+#include <Eigen/Core>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_correspondence {
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Which geodesic distance oracle a shape uses for the pairwise terms of the coupled refinement
+/// (named parameter `distance_oracle`).
+enum class Distance_oracle_type
+{
+  automatic,  ///< dense up to `maximum_dense_vertices` vertices, local above
+  dense,      ///< all pairs in a float matrix (Dense_distance_oracle): n^2 memory
+  local       ///< exact within a radius, landmark estimate beyond (Local_distance_oracle): linear memory
+};
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Number of vertices up to which Distance_oracle_type::automatic builds the dense oracle.
+constexpr int maximum_dense_vertices = 0;
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Seconds spent on each part of a shape's preprocessing.
+struct Shape_preprocessing_times
+{
+  double mesh = 0;         ///< flat copy and checks
+  double spectrum = 0;     ///< Laplace-Beltrami eigenpairs
+  double descriptors = 0;  ///< HKS, WKS, SHOT and the stack
+  double distances = 0;    ///< the geodesic distance oracle
+  double total() const { return mesh + spectrum + descriptors + distances; }
+};
+
+namespace internal {
+
+/// Index-based precomputed data of a shape (what the algorithms use).
+struct Shape_data
+{
+  Indexed_mesh mesh;
+  double scale = 1;  ///< sqrt(total area): every distance is divided by it
+  std::unique_ptr<Laplace_beltrami_spectrum> spectrum;
+  Eigen::MatrixXf descriptors;  ///< n x D descriptor stack
+  std::variant<Local_distance_oracle, Dense_distance_oracle> oracle;
+  std::unique_ptr<Nearest_vertex_search> nearest;
+  /// Node order of the MRFs whose nodes are this shape's vertices: a breadth-first order, which
+  /// keeps the neighbours of a node close in memory (TRW-S is faster and converges better).
+  std::vector<int> node_order;     ///< node -> vertex
+  std::vector<int> node_of_vertex; ///< vertex -> node
+  Shape_preprocessing_times times;
+
+  int number_of_vertices() const { return mesh.number_of_vertices(); }
+
+  /// Breadth-first order over every component, starting each component at its smallest vertex.
+  void compute_node_order()
+  {
+    const int n = mesh.number_of_vertices();
+    node_order.clear();
+    node_order.reserve(static_cast<std::size_t>(n));
+    node_of_vertex.assign(static_cast<std::size_t>(n), -1);
+    for(int start = 0; start < n; ++start)
+    {
+      if(node_of_vertex[start] >= 0) continue;
+      std::size_t head = node_order.size();
+      node_of_vertex[start] = static_cast<int>(node_order.size());
+      node_order.push_back(start);
+      while(head < node_order.size())
+      {
+        const int v = node_order[head++];
+        for(const int* w = mesh.neighbors_begin(v); w != mesh.neighbors_end(v); ++w)
+          if(node_of_vertex[*w] < 0)
+          {
+            node_of_vertex[*w] = static_cast<int>(node_order.size());
+            node_order.push_back(*w);
+          }
+      }
+    }
+  }
+};
+
+/// Settings of a shape's preprocessing.
+struct Shape_settings
+{
+  int number_of_eigenpairs = 100;
+  bool use_intrinsic_delaunay = true;
+  Descriptor_settings descriptors;
+  Distance_oracle_type oracle = Distance_oracle_type::automatic;
+  // The refinement only needs exact distances between candidates of neighbouring source vertices
+  // (within about 2 r + 1 rings); anything farther costs far more than a mesh edge whatever its
+  // exact value, so a smaller radius and a coarse landmark estimate suffice (and build 2-3x faster
+  // than the oracle's general-purpose defaults).
+  double local_radius_in_edge_lengths = 10;
+  int number_of_landmarks = 32;
+
+  template <typename NamedParameters>
+  static Shape_settings from(const NamedParameters& np)
+  {
+    using parameters::choose_parameter;
+    using parameters::get_parameter;
+    Shape_settings s;
+    s.number_of_eigenpairs =
+        choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs), s.number_of_eigenpairs);
+    s.use_intrinsic_delaunay =
+        choose_parameter(get_parameter(np, internal_np::use_intrinsic_delaunay), s.use_intrinsic_delaunay);
+    s.descriptors = Descriptor_settings::from(np);
+    s.oracle = choose_parameter(get_parameter(np, internal_np::distance_oracle), s.oracle);
+    s.local_radius_in_edge_lengths =
+        choose_parameter(get_parameter(np, internal_np::number_of_rings), s.local_radius_in_edge_lengths);
+    s.number_of_landmarks =
+        choose_parameter(get_parameter(np, internal_np::number_of_landmarks), s.number_of_landmarks);
+    if(s.number_of_eigenpairs < 2)
+      throw Invalid_parameter_error("number_of_eigenpairs = " + std::to_string(s.number_of_eigenpairs) +
+                                    " must be at least 2");
+    if(!(s.local_radius_in_edge_lengths > 0))
+      throw Invalid_parameter_error("number_of_rings (local oracle radius) must be positive");
+    return s;
+  }
+};
+
+inline double seconds_since(std::chrono::steady_clock::time_point t)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Computes everything but the flat mesh, which `d.mesh` already holds.
+template <typename ConcurrencyTag>
+void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::MatrixXd& user_descriptors)
+{
+  auto t = std::chrono::steady_clock::now();
+  const int n = d.mesh.number_of_vertices();
+  d.scale = std::sqrt(d.mesh.total_area);
+  d.compute_node_order();
+  d.nearest.reset(new Nearest_vertex_search(d.mesh));
+  d.times.mesh += seconds_since(t);
+
+  t = std::chrono::steady_clock::now();
+  d.spectrum.reset(new Laplace_beltrami_spectrum(
+      d.mesh, parameters::number_of_eigenpairs(std::min(s.number_of_eigenpairs, n - 1),
+                                               parameters::use_intrinsic_delaunay(s.use_intrinsic_delaunay))));
+  d.times.spectrum = seconds_since(t);
+
+  t = std::chrono::steady_clock::now();
+  d.descriptors = descriptor_stack<ConcurrencyTag>(d.mesh, *d.spectrum, s.descriptors, user_descriptors);
+  d.times.descriptors = seconds_since(t);
+
+  t = std::chrono::steady_clock::now();
+  const bool dense = s.oracle == Distance_oracle_type::dense ||
+                     (s.oracle == Distance_oracle_type::automatic && n <= maximum_dense_vertices);
+  if(dense)
+    d.oracle = Dense_distance_oracle::build<ConcurrencyTag>(d.mesh);
+  else
+  {
+    const Edge_length_graph graph(d.mesh);
+    d.oracle = Local_distance_oracle::build<ConcurrencyTag>(
+        d.mesh, s.local_radius_in_edge_lengths * graph.mean_edge_length, s.number_of_landmarks);
+  }
+  d.times.distances = seconds_since(t);
+}
+
+} // namespace internal
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// The precomputed data of one shape for matching: its flat copy, Laplace-Beltrami spectrum,
+/// descriptor stack, geodesic distance oracle and search structures. The expensive part of the
+/// coupled refinement that depends on one shape only is done here once: a shape matched against
+/// many others is prepared once.
+///
+/// Vertices are numbered by the mesh's vertex index map (named parameter `vertex_index_map`);
+/// maps between prepared shapes are vectors of such indices (Vertex_index_map_vector).
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` whose faces are triangles
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (descriptors and the
+///   distance oracle are computed in parallel)
+template <typename TriangleMesh, typename ConcurrencyTag = CGAL::Sequential_tag>
+class Correspondence_shape
+{
+public:
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+
+  /// Prepares `tm`. The mesh must be a connected, manifold triangle mesh (boundaries are fine).
+  /// \param np optional named parameters:
+  ///   - `number_of_eigenpairs` (int, default 100): Laplace-Beltrami eigenpairs for HKS/WKS;
+  ///   - `use_intrinsic_delaunay` (bool, default true);
+  ///   - `hks_weight`, `wks_weight`, `shot_weight`, `user_descriptor_map`,
+  ///     `user_descriptor_weight`, `number_of_hks_scales`, `number_of_wks_energies`,
+  ///     `wks_variance`, `shot_radius`: the descriptor stack (see descriptor_stack());
+  ///   - `distance_oracle` (Distance_oracle_type, default automatic: local oracle);
+  ///   - `number_of_rings` (double, default 15): radius of the local oracle's exact distances,
+  ///     in mean edge lengths; `number_of_landmarks` (int, default 256): its far estimate;
+  ///   - `vertex_point_map`, `vertex_index_map`.
+  /// \throws Invalid_mesh_error (empty, non-triangle, non-manifold, degenerate face, NaN,
+  ///   isolated vertex, several components), Invalid_parameter_error, Numerical_error
+  template <typename NamedParameters = parameters::Default_named_parameters>
+  explicit Correspondence_shape(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
+                                const std::string& name = "mesh")
+      : data_(new internal::Shape_data)
+  {
+    auto t = std::chrono::steady_clock::now();
+    internal::Mesh_requirements req;
+    req.allow_several_components = false;
+    data_->mesh = internal::make_indexed_mesh(tm, np, req, name, &vertices_);
+    data_->times.mesh = internal::seconds_since(t);
+    const internal::Shape_settings s = internal::Shape_settings::from(np);
+    Eigen::MatrixXd user;
+    const auto& user_map = parameters::get_parameter(np, internal_np::user_descriptor_map);
+    if constexpr(!std::is_same<typename std::decay<decltype(user_map)>::type,
+                               CGAL::internal_np::Param_not_found>::value)
+      user = internal::read_user_descriptors(vertices_, user_map);
+    internal::prepare_shape_data<ConcurrencyTag>(*data_, s, user);
+  }
+
+  /// Number of vertices.
+  std::size_t number_of_vertices() const { return vertices_.size(); }
+  /// The vertex of index `i`.
+  vertex_descriptor vertex(std::size_t i) const { return vertices_[i]; }
+  /// All vertices, in index order.
+  const std::vector<vertex_descriptor>& vertices() const { return vertices_; }
+  /// The Laplace-Beltrami spectrum.
+  const Laplace_beltrami_spectrum& spectrum() const { return *data_->spectrum; }
+  /// The n x D descriptor stack (row i: vertex i).
+  const Eigen::MatrixXf& descriptors() const { return data_->descriptors; }
+  /// \f$\sqrt{\mathrm{area}}\f$: the unit in which the algorithms measure distances.
+  double scale() const { return data_->scale; }
+  /// Seconds spent on each preprocessing stage.
+  const Shape_preprocessing_times& preprocessing_times() const { return data_->times; }
+  /// True when the dense distance oracle was built.
+  bool has_dense_oracle() const { return std::holds_alternative<Dense_distance_oracle>(data_->oracle); }
+  /// The index-based data (for the package's algorithms).
+  const internal::Shape_data& data() const { return *data_; }
+
+private:
+  std::vector<vertex_descriptor> vertices_;
+  std::shared_ptr<internal::Shape_data> data_;
+};
+
+} // namespace Surface_mesh_correspondence
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_CORRESPONDENCE_CORRESPONDENCE_SHAPE_H
