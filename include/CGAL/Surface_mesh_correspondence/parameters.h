@@ -70,6 +70,7 @@ namespace Surface_mesh_correspondence {
   X(use_neighbor_matches_t, use_neighbor_matches, use_neighbor_matches)                  \
   X(pairwise_rings_t, pairwise_rings, pairwise_rings)                                    \
   X(stop_when_consistency_worsens_t, stop_when_consistency_worsens, stop_when_consistency_worsens) \
+  X(keep_consistent_input_maps_t, keep_consistent_input_maps, keep_consistent_input_maps) \
   /* automatic initialisation */                                                         \
   X(spectral_basis_size_t, spectral_basis_size, spectral_basis_size)                     \
   X(zoomout_final_size_t, zoomout_final_size, zoomout_final_size)                        \

@@ -45,6 +45,12 @@ struct Refinement_settings
   /// consistent. false (the default) runs the whole schedule; either way the most consistent maps
   /// seen are returned. Stopping early was measured to cost accuracy (see the manual).
   bool stop_when_consistency_worsens = false;
+  /// Whether the input maps take part in the choice of the most consistent maps. true (the
+  /// default, the paper's rule) returns the input maps unchanged when no refined iterate is more
+  /// consistent; false returns the most consistent refined iterate. Use false for input maps that
+  /// are consistent by construction but less accurate (e.g. automatic_initial_maps(), whose
+  /// coupled ZoomOut makes most vertices exact fixed points of the cycle).
+  bool keep_consistent_input_maps = true;
 
   template <typename NamedParameters>
   static Refinement_settings from(const NamedParameters& np)
@@ -68,6 +74,8 @@ struct Refinement_settings
     s.pairwise_rings = choose_parameter(get_parameter(np, internal_np::pairwise_rings), s.pairwise_rings);
     s.stop_when_consistency_worsens = choose_parameter(
         get_parameter(np, internal_np::stop_when_consistency_worsens), s.stop_when_consistency_worsens);
+    s.keep_consistent_input_maps = choose_parameter(get_parameter(np, internal_np::keep_consistent_input_maps),
+                                                    s.keep_consistent_input_maps);
     s.check();
     return s;
   }
@@ -428,6 +436,7 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
   Coupled_refinement_result result;
   result.inconsistent_vertices_before = inconsistency(x12, x21);
   std::size_t best_c = result.inconsistent_vertices_before;
+  bool have_best = settings.keep_consistent_input_maps;
   std::vector<int> best12 = x12, best21 = x21;
   Refinement_workspace w12, w21;
   bool stop = false;
@@ -462,7 +471,7 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
     }
     // Eq. (4): continue while the summed cycle-consistency error does not increase.
     const std::size_t c = inconsistency(x12, x21);
-    if(c > best_c)
+    if(have_best && c > best_c)
     {
       if(settings.stop_when_consistency_worsens)
       {
@@ -472,6 +481,7 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
     }
     else
     {
+      have_best = true;
       best_c = c;
       best12 = x12;
       best21 = x21;
@@ -534,8 +544,8 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 /// \f$ x(i) \f$ and of the inverse of the opposite map \f$ \tilde x(i) \f$ (both always kept).
 /// Distances are geodesic, divided by \f$ \sqrt{\mathrm{area}} \f$ of each shape, and the
 /// descriptor stack is scale-invariant, so the parameters do not depend on units. The iteration
-/// continues while the cycle-consistency error of Eq. (4) does not increase; the best maps are
-/// returned.
+/// runs the ring schedule and returns the most consistent maps by Eq. (4) (the number of vertices
+/// that are not fixed points of the cycles); the paper's early stop is an option.
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (preprocessing, candidate
 ///   selection and the MRF terms in parallel; TRW-S itself is sequential)
@@ -544,8 +554,16 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 ///   of `tm2` (read: initial map; written: refined map); same for VertexVertexMap21
 /// \param np optional algorithm parameters:
 ///   - `number_of_candidates` (int, default 20): m, labels per source vertex;
-///   - `ring_schedule` (std::vector<int>, default {6, 4, 3}): candidate radius per outer iteration;
-///   - `unary_weight` (double, default 0.05): \f$\mu\f$;
+///   - `ring_schedule` (std::vector<int>, default {6, 4, 3, 2, 1}; the paper used {6, 4, 3}):
+///     candidate radius per outer iteration;
+///   - `unary_weight` (double, default 0.03): \f$\mu\f$;
+///   - `use_neighbor_matches` (bool, default true): the matches of the source neighbours are
+///     candidates too (propagation; false: the paper's candidate sets);
+///   - `pairwise_rings` (int, default 1): pairwise terms between source vertices up to this many
+///     rings apart (1: the mesh edges, the paper);
+///   - `stop_when_consistency_worsens` (bool, default false): the paper's early stop, Eq. (4);
+///   - `keep_consistent_input_maps` (bool, default true): the input maps are returned unchanged
+///     when no refined iterate is more consistent (false: the most consistent refined iterate);
 ///   - `use_coupling` (bool, default true): false gives the paper's non-coupled ablation;
 ///   - `number_of_outer_iterations` (int, default: length of the ring schedule, whose last value
 ///     is repeated beyond its end);
