@@ -42,14 +42,17 @@ struct Shape_pair
   std::vector<std::size_t> gt_12, gt_21;
 };
 
-inline Shape_pair bent_pair(const Mesh& m1, double length, double angle, bool remesh, double target_edge = 0.0)
+/// A pair (M1, M2) with ground truth: M2 is the image of M1 under `deform` and, when `remesh` is
+/// true, isotropically remeshed (different connectivity). gt_12 and gt_21 as for bent_pair().
+inline Shape_pair deformed_pair(const Mesh& m1, const std::function<Point(const Point&)>& deform, bool remesh,
+                                double target_edge = 0.0)
 {
   typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
   typedef CGAL::AABB_traits<Kernel, Primitive> Traits;
   typedef CGAL::AABB_tree<Traits> Tree;
   Shape_pair p;
   p.m1 = m1;
-  const Mesh bent = transformed(m1, [&](const Point& q) { return bend_point(q, length, angle); });
+  const Mesh bent = transformed(m1, deform);
   p.m2 = bent;
   if(remesh)
   {
@@ -97,6 +100,12 @@ inline Shape_pair bent_pair(const Mesh& m1, double length, double angle, bool re
     }
   }
   return p;
+}
+
+inline Shape_pair bent_pair(const Mesh& m1, double length, double angle, bool remesh, double target_edge = 0.0)
+{
+  return deformed_pair(m1, [length, angle](const Point& q) { return bend_point(q, length, angle); }, remesh,
+                       target_edge);
 }
 
 /// Moves the matches of a random fraction of the vertices by a random walk of `steps` edges on

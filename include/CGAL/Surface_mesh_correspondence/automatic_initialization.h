@@ -1,0 +1,920 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Automatic initial point-to-point maps between two meshes, in both directions, without user
+// input: an orientation-preserving functional map fitted to descriptors (WKS, HKS), upsampled to
+// point maps by a coupled ZoomOut. These maps are the starting point of the coupled refinement.
+
+#ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_AUTOMATIC_INITIALIZATION_H
+#define CGAL_SURFACE_MESH_CORRESPONDENCE_AUTOMATIC_INITIALIZATION_H
+
+#include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/functional_map.h>
+#include <CGAL/Surface_mesh_correspondence/heat_kernel_signature.h>
+#include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/internal/dijkstra.h>
+#include <CGAL/Surface_mesh_correspondence/internal/orientation_operator.h>
+#include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
+#include <CGAL/Surface_mesh_correspondence/internal/vertex_normals.h>
+#include <CGAL/Surface_mesh_correspondence/parameters.h>
+#include <CGAL/Surface_mesh_correspondence/spectrum.h>
+#include <CGAL/Surface_mesh_correspondence/wave_kernel_signature.h>
+#include <CGAL/Surface_mesh_correspondence/zoomout.h>
+
+#include <CGAL/tags.h>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/parallel_invoke.h>
+#endif
+
+#include <Eigen/Core>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_correspondence {
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Summary of automatic_initial_maps(): timings and diagnostics.
+struct Automatic_initialization_result
+{
+  /// Seconds spent on the flat mesh copies, spectra and descriptors (0 when they were given).
+  double spectra_seconds = 0;
+  /// Seconds spent on the reduced operators and the functional map fits.
+  double functional_map_seconds = 0;
+  /// Seconds spent in ZoomOut (both directions).
+  double zoomout_seconds = 0;
+  /// Total seconds.
+  double total_seconds = 0;
+  /// The selection score of the chosen fits (weighted descriptor distance between matched sample
+  /// vertices after the short ZoomOut), averaged over both directions.
+  double descriptor_residual = 0;
+  /// Orientation of the maps: +1 preserving, -1 reversing (chosen from landmarks or the meshes'
+  /// orientations, see automatic_initial_maps()).
+  int orientation_sign = 1;
+  /// Cycle consistency: the mean over the vertices x of both meshes of the Euclidean distance
+  /// \f$ \|x - T_{21}(T_{12}(x))\| / \sqrt{A} \f$ (and symmetrically).
+  double cycle_error = 0;
+  /// The fraction of the vertices of both meshes with \f$ T_{21}(T_{12}(x)) = x \f$ (and
+  /// symmetrically).
+  double cycle_fixed_fraction = 0;
+  /// The area-weighted fraction of triangles whose images keep their orientation (about 1 for
+  /// orientation-preserving maps, 0 for mirror maps), averaged over both directions.
+  double orientation_agreement = 0;
+  /// Basis sizes: of the initial functional maps and after ZoomOut.
+  int initial_basis_size = 0, final_basis_size = 0;
+  /// The final functional maps (unit-area bases): C12 (k x k, pulls functions from mesh 2 back
+  /// to mesh 1, the map of map_12) and C21.
+  Eigen::MatrixXd functional_map_12, functional_map_21;
+};
+
+namespace internal {
+
+/// One configuration of the functional map fit tried by the initialisation.
+struct Fit_candidate
+{
+  int basis_size;               ///< k0
+  double orientation_weight;    ///< w_o
+  double commutativity_weight;  ///< w_c
+};
+
+/// Every setting of the automatic initialisation, with its default.
+struct Initialization_settings
+{
+  // Basis sizes.
+  /// The fit configurations tried (each in both directions); the best after a short ZoomOut is
+  /// kept. The named parameters spectral_basis_size, orientation_weight and commutativity_weight
+  /// replace the list by a single configuration.
+  std::vector<Fit_candidate> candidates{{20, 0.03, 0.3}, {20, 0.1, 1.0}, {30, 0.03, 0.3}, {30, 0.1, 1.0}};
+  int selection_size = 40;               ///< basis size at which candidates are compared
+  int zoomout_final_size = 120;          ///< k_final
+  int zoomout_step = 5;                  ///< ZoomOut basis growth per iteration
+  int number_of_eigenpairs = 0;          ///< eigenpairs computed (0: zoomout_final_size)
+  // Descriptors.
+  int number_of_wks_energies = 100;
+  double wks_variance = 7.0;
+  int number_of_hks_scales = 16;
+  double wks_weight = 1.0;
+  double hks_weight = 0.0;
+  /// Weight of the orientation-sensitive descriptors <n, grad f x grad g> (0: none).
+  double signed_descriptor_weight = 1.0;
+  /// They are smoothed by projection on this many eigenfunctions (0: not smoothed).
+  int signed_descriptor_smoothing = 60;
+  /// Number of descriptors (evenly spread over the columns) that get multiplication and
+  /// orientation operators.
+  int number_of_operator_descriptors = 20;
+  bool normalize_orientation_gradients = true;
+  // Functional map energy (orientation and commutativity weights come from the candidates).
+  Functional_map_weights weights;
+  bool procrustes = true;                ///< replace each fitted map by the nearest orthogonal one
+  // ZoomOut.
+  bool coupled_zoomout = true;
+  double zoomout_bijectivity_weight = 1.0;
+  int zoomout_number_of_samples = 1000;  ///< 0: all vertices in every iteration
+  /// Weight of the descriptor coordinates appended to the ZoomOut embeddings (0: none), and its
+  /// multiplier at the last step.
+  double zoomout_descriptor_weight = 0.0;
+  double zoomout_descriptor_final_ratio = 1.0;
+  /// Use only the signed (orientation-sensitive) descriptors as ZoomOut features.
+  bool zoomout_signed_features_only = true;
+  // Landmarks.
+  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
+  double landmark_descriptor_weight = 50.0;
+  int number_of_landmark_energies = 10;
+  double zoomout_landmark_weight = 0.01;
+  bool verbose = false;
+};
+
+/// Reads the named parameters of automatic_initial_maps() into settings.
+template <typename NamedParameters>
+Initialization_settings initialization_settings(const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using parameters::is_default_parameter;
+  Initialization_settings s;
+  s.zoomout_final_size = choose_parameter(get_parameter(np, internal_np::zoomout_final_size),
+                                          s.zoomout_final_size);
+  s.zoomout_step = choose_parameter(get_parameter(np, internal_np::zoomout_step), s.zoomout_step);
+  s.number_of_eigenpairs = choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs),
+                                            s.number_of_eigenpairs);
+  s.number_of_wks_energies = choose_parameter(get_parameter(np, internal_np::number_of_wks_energies),
+                                              s.number_of_wks_energies);
+  s.wks_variance = choose_parameter(get_parameter(np, internal_np::wks_variance), s.wks_variance);
+  s.number_of_hks_scales = choose_parameter(get_parameter(np, internal_np::number_of_hks_scales),
+                                            s.number_of_hks_scales);
+  s.wks_weight = choose_parameter(get_parameter(np, internal_np::wks_weight), s.wks_weight);
+  s.hks_weight = choose_parameter(get_parameter(np, internal_np::hks_weight), s.hks_weight);
+  if(!is_default_parameter<NamedParameters, internal_np::spectral_basis_size_t>::value ||
+     !is_default_parameter<NamedParameters, internal_np::orientation_weight_t>::value ||
+     !is_default_parameter<NamedParameters, internal_np::commutativity_weight_t>::value)
+  {
+    Fit_candidate c = s.candidates.front();
+    c.basis_size = choose_parameter(get_parameter(np, internal_np::spectral_basis_size), c.basis_size);
+    c.orientation_weight = choose_parameter(get_parameter(np, internal_np::orientation_weight),
+                                            c.orientation_weight);
+    c.commutativity_weight = choose_parameter(get_parameter(np, internal_np::commutativity_weight),
+                                              c.commutativity_weight);
+    s.candidates.assign(1, c);
+  }
+  s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
+  const auto& landmarks = get_parameter(np, internal_np::landmarks);
+  if constexpr(!std::is_same<typename std::decay<decltype(landmarks)>::type,
+                             CGAL::internal_np::Param_not_found>::value)
+  {
+    for(const auto& l : landmarks)
+      s.landmarks.emplace_back(static_cast<std::size_t>(l.first), static_cast<std::size_t>(l.second));
+  }
+  return s;
+}
+
+/// The largest candidate basis size.
+inline int largest_candidate_size(const Initialization_settings& s)
+{
+  int k = 0;
+  for(const Fit_candidate& c : s.candidates) k = std::max(k, c.basis_size);
+  return k;
+}
+
+/// Checks the settings against each other (not against the meshes).
+inline void check_initialization_settings(const Initialization_settings& s)
+{
+  auto fail = [](const std::string& what) {
+    throw Invalid_parameter_error("automatic_initial_maps: " + what);
+  };
+  if(s.candidates.empty()) fail("no functional map configuration to try");
+  for(const Fit_candidate& c : s.candidates)
+  {
+    if(c.basis_size < 2)
+      fail("spectral_basis_size = " + std::to_string(c.basis_size) + " must be at least 2");
+    if(s.zoomout_final_size < c.basis_size)
+      fail("zoomout_final_size = " + std::to_string(s.zoomout_final_size) +
+           " must be at least spectral_basis_size = " + std::to_string(c.basis_size));
+    if(!(c.orientation_weight >= 0) || !(c.commutativity_weight >= 0) || !std::isfinite(c.orientation_weight) ||
+       !std::isfinite(c.commutativity_weight))
+      fail("orientation_weight and commutativity_weight must be finite and non-negative");
+  }
+  if(s.zoomout_step < 1) fail("zoomout_step = " + std::to_string(s.zoomout_step) + " must be positive");
+  if(s.number_of_eigenpairs != 0 && s.number_of_eigenpairs < s.zoomout_final_size)
+    fail("number_of_eigenpairs = " + std::to_string(s.number_of_eigenpairs) +
+         " is smaller than zoomout_final_size = " + std::to_string(s.zoomout_final_size));
+  if(!(s.wks_weight >= 0) || !(s.hks_weight >= 0) || !(s.wks_weight + s.hks_weight > 0))
+    fail("the descriptor weights (wks_weight, hks_weight) must be non-negative, one of them positive");
+  if(s.wks_weight > 0 && s.number_of_wks_energies < 2)
+    fail("number_of_wks_energies must be at least 2");
+  if(s.hks_weight > 0 && s.number_of_hks_scales < 1) fail("number_of_hks_scales must be positive");
+  if(!(s.signed_descriptor_weight >= 0)) fail("the signed descriptor weight must be non-negative");
+  if(!(s.weights.laplacian >= 0) || !(s.weights.descriptor > 0)) fail("invalid functional map weights");
+}
+
+/// The number of eigenpairs the initialisation needs.
+inline int initialization_number_of_eigenpairs(const Initialization_settings& s)
+{
+  return s.number_of_eigenpairs > 0 ? s.number_of_eigenpairs : s.zoomout_final_size;
+}
+
+/// Column layout of initialization_descriptors(): d_wks WKS columns, d_hks HKS columns, then the
+/// signed descriptors of the pairs below.
+struct Initialization_descriptor_layout
+{
+  int wks = 0, hks = 0;
+  std::vector<std::pair<int, int> > signed_pairs;  ///< pairs of (WKS or HKS) columns
+  int plain() const { return wks + hks; }
+  int total() const { return plain() + static_cast<int>(signed_pairs.size()); }
+};
+
+inline Initialization_descriptor_layout initialization_descriptor_layout(const Initialization_settings& s)
+{
+  Initialization_descriptor_layout l;
+  const bool with_signed = s.signed_descriptor_weight > 0 && s.number_of_wks_energies >= 2 &&
+                           s.number_of_hks_scales >= 2;
+  l.wks = (s.wks_weight > 0 || with_signed) ? s.number_of_wks_energies : 0;
+  l.hks = (s.hks_weight > 0 || with_signed) ? s.number_of_hks_scales : 0;
+  if(with_signed)
+  {
+    // Pairs of smooth, large-scale functions (WKS at low energies, HKS at long times) and a few
+    // mid-range WKS pairs; these were the most consistent across the poses and people of FAUST_r
+    // (correlation of the values at ground-truth correspondences, benchmark/bench_init.cpp).
+    auto wks = [&](double f) { return static_cast<int>(std::lround(f * (l.wks - 1))); };
+    auto hks = [&](double f) { return l.wks + static_cast<int>(std::lround(f * (l.hks - 1))); };
+    const std::pair<int, int> pairs[] = {{wks(0.3), wks(0.7)}, {wks(0.0), hks(1.0)}, {hks(2.0 / 3.0), hks(1.0)},
+                                         {wks(0.05), hks(1.0)}, {wks(0.05), hks(2.0 / 3.0)}, {wks(0.0), wks(0.05)},
+                                         {wks(0.7), wks(0.9)}, {wks(0.1), wks(0.2)}};
+    for(const auto& p : pairs)
+      if(p.first != p.second) l.signed_pairs.push_back(p);
+  }
+  return l;
+}
+
+/// The descriptors of one shape used by the initialisation, n x d (see
+/// Initialization_descriptor_layout): WKS columns (if wks_weight > 0), HKS columns (if
+/// hks_weight > 0), then orientation-sensitive columns <n, grad f x grad g> for pairs of them,
+/// smoothed by projection on the first `signed_descriptor_smoothing` eigenfunctions. Compute once
+/// per shape; initialization_descriptor_weights() gives the column weights.
+template <typename ConcurrencyTag>
+Eigen::MatrixXd initialization_descriptors(const Indexed_mesh& mesh, const Laplace_beltrami_spectrum& spectrum,
+                                           const Initialization_settings& s)
+{
+  const int n = spectrum.number_of_vertices();
+  const Initialization_descriptor_layout l = initialization_descriptor_layout(s);
+  Eigen::MatrixXd out(n, l.total());
+  if(l.wks > 0)
+    out.leftCols(l.wks) = wave_kernel_signature<ConcurrencyTag>(
+        spectrum, parameters::number_of_wks_energies(l.wks, parameters::wks_variance(s.wks_variance)));
+  if(l.hks > 0)
+    out.middleCols(l.wks, l.hks) =
+        heat_kernel_signature<ConcurrencyTag>(spectrum, parameters::number_of_hks_scales(l.hks));
+  if(!l.signed_pairs.empty())
+  {
+    Eigen::MatrixXd g = gradient_cross_products(mesh, out.leftCols(l.plain()), l.signed_pairs,
+                                                1.0 / std::sqrt(spectrum.total_area()));
+    const int k = std::min(s.signed_descriptor_smoothing, spectrum.number_of_eigenpairs());
+    if(k > 0)
+    {
+      const Eigen::MatrixXd& phi = spectrum.eigenvectors();
+      g = phi.leftCols(k) * (phi.leftCols(k).transpose() * (spectrum.mass().asDiagonal() * g));
+    }
+    out.rightCols(g.cols()) = g;
+  }
+  return out;
+}
+
+/// The column weights matching initialization_descriptors().
+inline Eigen::VectorXd initialization_descriptor_weights(const Initialization_settings& s)
+{
+  const Initialization_descriptor_layout l = initialization_descriptor_layout(s);
+  Eigen::VectorXd w(l.total());
+  w.head(l.wks).setConstant(std::max(0.0, s.wks_weight));
+  w.segment(l.wks, l.hks).setConstant(std::max(0.0, s.hks_weight));
+  w.tail(l.signed_pairs.size()).setConstant(s.signed_descriptor_weight);
+  return w;
+}
+
+/// What the core needs of one shape; the stateful shape class precomputes it once per mesh.
+struct Initialization_shape
+{
+  const Indexed_mesh* mesh = nullptr;
+  const Laplace_beltrami_spectrum* spectrum = nullptr;
+  /// n x d descriptors (initialization_descriptors()); columns correspond across shapes.
+  const Eigen::MatrixXd* descriptors = nullptr;
+};
+
+/// Signed volume of a closed mesh (0 with a boundary): its sign tells the orientation.
+inline double signed_volume(const Indexed_mesh& m)
+{
+  if(m.has_boundary()) return 0;
+  double v = 0;
+  for(int t = 0; t < m.number_of_triangles(); ++t)
+    v += m.point(m.triangles(t, 0)).dot(m.point(m.triangles(t, 1)).cross(m.point(m.triangles(t, 2))));
+  return v / 6.0;
+}
+
+/// Wave kernel maps from landmark vertices: for landmark p and energy e, the vertex function
+/// sum_{j: lambda_j > 0} g_j(e) phi_j(p) phi_j(x) / sum_j g_j(e) (unit-area eigenpairs), which
+/// does not depend on the signs of the eigenvectors.
+inline Eigen::MatrixXd landmark_wave_kernel_maps(const Eigen::MatrixXd& basis, const Eigen::VectorXd& values,
+                                                 const std::vector<int>& points, int energies)
+{
+  const Eigen::Index k = basis.cols();
+  int first = 0;
+  while(first < k && !(values[first] > 1e-9 * values[k - 1])) ++first;
+  const double lo = std::log(values[std::min<Eigen::Index>(first, k - 1)]), hi = std::log(values[k - 1]);
+  const double delta = energies > 1 ? (hi - lo) / (energies - 1) : (hi - lo);
+  const double sigma = 7.0 * delta;
+  Eigen::MatrixXd out(basis.rows(), Eigen::Index(points.size()) * energies);
+  for(std::size_t l = 0; l < points.size(); ++l)
+    for(int e = 0; e < energies; ++e)
+    {
+      const double energy = energies > 1 ? lo + e * delta : 0.5 * (lo + hi);
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(k);
+      for(Eigen::Index j = first; j < k; ++j)
+      {
+        const double d = energy - std::log(values[j]);
+        g[j] = std::exp(-d * d / (2 * sigma * sigma));
+      }
+      g /= std::max(g.sum(), 1e-300);
+      out.col(Eigen::Index(l) * energies + e) = basis * g.cwiseProduct(basis.row(points[l]).transpose());
+    }
+  return out;
+}
+
+/// The reduced terms of one shape at basis size k: descriptor coefficients and, for the columns
+/// `operator_columns`, the multiplication and orientation operators.
+template <typename ConcurrencyTag>
+Functional_map_shape_terms initialization_terms(const Indexed_mesh& mesh, const Eigen::MatrixXd& basis_k,
+                                                const Eigen::VectorXd& mass, const Eigen::VectorXd& values_k,
+                                                double area, const Eigen::MatrixXd& descriptors,
+                                                const std::vector<Eigen::Index>& operator_columns,
+                                                const Initialization_settings& s)
+{
+  Functional_map_shape_terms t;
+  t.eigenvalues = values_k;
+  t.descriptor_coefficients = basis_k.transpose() * (mass.asDiagonal() * descriptors);
+  const std::size_t m = operator_columns.size();
+  if(m == 0) return t;
+  const Reduced_operator_geometry g =
+      reduced_operator_geometry(mesh, basis_k, mass, 1.0 / std::sqrt(area), 1.0 / area);
+  t.multiplication_operators.resize(m);
+  t.orientation_operators.resize(m);
+  parallel_for<ConcurrencyTag>(m, [&](std::size_t i) {
+    const Eigen::VectorXd f = descriptors.col(operator_columns[i]);
+    t.multiplication_operators[i] = reduced_multiplication_operator(g, f);
+    t.orientation_operators[i] = reduced_orientation_operator(mesh, g, f, s.normalize_orientation_gradients);
+  });
+  return t;
+}
+
+/// The terms restricted to the first k basis functions (the reduced operators of a smaller basis
+/// are the leading blocks of those of a larger one).
+inline Functional_map_shape_terms leading_terms(const Functional_map_shape_terms& t, int k)
+{
+  Functional_map_shape_terms r;
+  r.eigenvalues = t.eigenvalues.head(k);
+  r.descriptor_coefficients = t.descriptor_coefficients.topRows(k);
+  for(const Eigen::MatrixXd& x : t.multiplication_operators) r.multiplication_operators.push_back(x.topLeftCorner(k, k));
+  for(const Eigen::MatrixXd& x : t.orientation_operators) r.orientation_operators.push_back(x.topLeftCorner(k, k));
+  return r;
+}
+
+/// Divides each pair of corresponding operators (S_f, T_f) by the mean of their Frobenius norms,
+/// so that the commutativity terms measure relative residuals.
+inline void normalize_operator_pairs(Functional_map_shape_terms& a, Functional_map_shape_terms& b)
+{
+  auto normalize = [](std::vector<Eigen::MatrixXd>& x, std::vector<Eigen::MatrixXd>& y) {
+    for(std::size_t f = 0; f < x.size(); ++f)
+    {
+      const double scale = 0.5 * (x[f].norm() + y[f].norm());
+      if(scale > 0)
+      {
+        x[f] /= scale;
+        y[f] /= scale;
+      }
+    }
+  };
+  normalize(a.multiplication_operators, b.multiplication_operators);
+  normalize(a.orientation_operators, b.orientation_operators);
+}
+
+/// The orthogonal matrix nearest to C in the Frobenius norm (U V^T of the SVD).
+inline Eigen::MatrixXd nearest_orthogonal(const Eigen::MatrixXd& C)
+{
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  return svd.matrixU() * svd.matrixV().transpose();
+}
+
+/// Mean normalised Euclidean cycle error and fixed-point fraction of x -> back(forth(x)).
+inline void cycle_statistics(const Indexed_mesh& m, const std::vector<int>& forth,
+                             const std::vector<int>& back, double& error, double& fixed)
+{
+  const double scale = 1.0 / std::sqrt(m.total_area);
+  double e = 0;
+  std::size_t f = 0;
+  for(std::size_t x = 0; x < forth.size(); ++x)
+  {
+    const int y = back[forth[x]];
+    if(y == int(x)) ++f;
+    e += (m.points.row(x) - m.points.row(y)).norm() * scale;
+  }
+  error = e / double(forth.size());
+  fixed = double(f) / double(forth.size());
+}
+
+/// The area-weighted fraction of the triangles of `source` (with three distinct images) whose
+/// image under `map` has the orientation of `target` (its vertex normals): about 1 for an
+/// orientation-preserving map, 0 for a mirror map, 1/2 for a scrambled one.
+inline double orientation_agreement(const Indexed_mesh& source, const Indexed_mesh& target,
+                                    const Indexed_mesh::Points& target_normals, const std::vector<int>& map)
+{
+  double agree = 0, total = 0;
+  for(int t = 0; t < source.number_of_triangles(); ++t)
+  {
+    const int a = map[source.triangles(t, 0)], b = map[source.triangles(t, 1)], c = map[source.triangles(t, 2)];
+    if(a == b || b == c || a == c) continue;
+    const Eigen::Vector3d normal = (target.point(b) - target.point(a)).cross(target.point(c) - target.point(a));
+    const Eigen::Vector3d reference =
+        (target_normals.row(a) + target_normals.row(b) + target_normals.row(c)).transpose();
+    const double w = source.triangle_areas[t];
+    total += w;
+    if(normal.dot(reference) > 0) agree += w;
+  }
+  return total > 0 ? agree / total : 0.5;
+}
+
+/// Farthest point samples (edge-graph distances) of the whole mesh, starting from vertex 0.
+inline std::vector<int> zoomout_samples(const Indexed_mesh& m, int count)
+{
+  std::vector<int> samples;
+  if(count <= 0 || count >= m.number_of_vertices()) return samples;
+  Edge_length_graph graph(m);
+  Farthest_point_sampler sampler(graph);
+  std::vector<int> all(m.number_of_vertices());
+  for(int v = 0; v < m.number_of_vertices(); ++v) all[v] = v;
+  sampler.sample(all.data(), all.size(), nullptr, 0, count, samples);
+  std::sort(samples.begin(), samples.end());
+  return samples;
+}
+
+/// Checks one shape against the settings.
+inline void check_initialization_shape(const Initialization_shape& shape, int k, const std::string& name)
+{
+  if(!shape.mesh || !shape.spectrum || !shape.descriptors)
+    throw Invalid_parameter_error("automatic_initial_maps: missing data for " + name);
+  const Indexed_mesh& m = *shape.mesh;
+  if(m.number_of_components != 1)
+    throw Invalid_mesh_error("automatic_initial_maps: " + name + " has " +
+                             std::to_string(m.number_of_components) +
+                             " connected components; the spectral initialisation needs a connected "
+                             "mesh (keep the largest component, e.g. with "
+                             "CGAL::Polygon_mesh_processing::keep_largest_connected_components)");
+  if(m.number_of_vertices() <= k)
+    throw Invalid_mesh_error("automatic_initial_maps: " + name + " has " +
+                             std::to_string(m.number_of_vertices()) + " vertices, too few for a basis of " +
+                             std::to_string(k) + " eigenfunctions (reduce zoomout_final_size)");
+  if(shape.spectrum->number_of_vertices() != m.number_of_vertices() ||
+     shape.descriptors->rows() != m.number_of_vertices())
+    throw Invalid_parameter_error("automatic_initial_maps: the spectrum or descriptors of " + name +
+                                  " do not match its vertices");
+  if(shape.spectrum->number_of_eigenpairs() < k)
+    throw Invalid_parameter_error("automatic_initial_maps: the spectrum of " + name + " has " +
+                                  std::to_string(shape.spectrum->number_of_eigenpairs()) +
+                                  " eigenpairs, fewer than zoomout_final_size = " + std::to_string(k));
+}
+
+/// Runs a and b, concurrently with Parallel_tag.
+template <typename ConcurrencyTag, typename A, typename B>
+void invoke_both(const A& a, const B& b)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if(Is_parallel<ConcurrencyTag>::value)
+  {
+    tbb::parallel_invoke(a, b);
+    return;
+  }
+#endif
+  a();
+  b();
+}
+
+/// The core of automatic_initial_maps() on precomputed shapes (flat mesh, spectrum with at least
+/// zoomout_final_size eigenpairs, descriptors from initialization_descriptors() with the same
+/// settings).
+template <typename ConcurrencyTag>
+Automatic_initialization_result automatic_initial_maps(const Initialization_shape& shape1,
+                                                       const Initialization_shape& shape2,
+                                                       const Initialization_settings& s,
+                                                       std::vector<std::size_t>& map_12,
+                                                       std::vector<std::size_t>& map_21)
+{
+  typedef std::chrono::steady_clock Clock;
+  auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const Clock::time_point start = Clock::now();
+  check_initialization_settings(s);
+  const int kf = s.zoomout_final_size;
+  const int kmax = largest_candidate_size(s);
+  check_initialization_shape(shape1, kf, "mesh 1");
+  check_initialization_shape(shape2, kf, "mesh 2");
+  const Indexed_mesh& m1 = *shape1.mesh;
+  const Indexed_mesh& m2 = *shape2.mesh;
+  const int n1 = m1.number_of_vertices(), n2 = m2.number_of_vertices();
+  const Initialization_descriptor_layout layout = initialization_descriptor_layout(s);
+  const Eigen::VectorXd descriptor_weights = initialization_descriptor_weights(s);
+  for(const Initialization_shape* shape : {&shape1, &shape2})
+    if(shape->descriptors->cols() != layout.total() || !shape->descriptors->allFinite())
+      throw Invalid_parameter_error("automatic_initial_maps: the descriptors have " +
+                                    std::to_string(shape->descriptors->cols()) + " columns, " +
+                                    std::to_string(layout.total()) +
+                                    " expected (compute them with initialization_descriptors() and "
+                                    "the same settings), or non-finite values");
+  std::vector<std::pair<int, int> > landmarks;
+  for(const auto& l : s.landmarks)
+  {
+    if(l.first >= std::size_t(n1) || l.second >= std::size_t(n2))
+      throw Invalid_parameter_error("automatic_initial_maps: landmark (" + std::to_string(l.first) +
+                                    ", " + std::to_string(l.second) + ") is not a pair of vertices of "
+                                    "mesh 1 (" + std::to_string(n1) + " vertices) and mesh 2 (" +
+                                    std::to_string(n2) + " vertices)");
+    landmarks.emplace_back(int(l.first), int(l.second));
+  }
+  std::vector<std::pair<int, int> > landmarks21;
+  for(const auto& l : landmarks) landmarks21.emplace_back(l.second, l.first);
+
+  Automatic_initialization_result result;
+  result.final_basis_size = kf;
+  const Laplace_beltrami_spectrum& S1 = *shape1.spectrum;
+  const Laplace_beltrami_spectrum& S2 = *shape2.spectrum;
+  const double A1 = S1.total_area(), A2 = S2.total_area();
+  // Unit-area bases, masses and eigenvalues.
+  const Eigen::MatrixXd basis1 = unit_area_basis(S1, kf), basis2 = unit_area_basis(S2, kf);
+  const Eigen::VectorXd mass1 = unit_area_mass(S1), mass2 = unit_area_mass(S2);
+  const Eigen::VectorXd values1 = S1.eigenvalues().head(kf) * A1, values2 = S2.eigenvalues().head(kf) * A2;
+
+  // Descriptors: columns normalised to unit L2(M') norm on each shape, then landmark maps.
+  const Clock::time_point fit_start = Clock::now();
+  Eigen::MatrixXd D1 = *shape1.descriptors, D2 = *shape2.descriptors;
+  Eigen::VectorXd column_weights = descriptor_weights;
+  auto normalise = [](Eigen::MatrixXd& D, const Eigen::VectorXd& mass) {
+    for(Eigen::Index c = 0; c < D.cols(); ++c)
+    {
+      const double norm = std::sqrt(D.col(c).cwiseAbs2().dot(mass));
+      if(norm > 0) D.col(c) /= norm;
+    }
+  };
+  normalise(D1, mass1);
+  normalise(D2, mass2);
+  // Meshes of opposite orientations (closed, signed volumes of opposite signs): the map reverses
+  // the orientation of the embedding, so the signed descriptors of mesh 2 change sign.
+  int orientation_sign = (signed_volume(m1) * signed_volume(m2) < 0) ? -1 : 1;
+  // Operators for evenly spread plain descriptor columns with positive weight.
+  std::vector<Eigen::Index> operator_columns;
+  {
+    std::vector<Eigen::Index> candidates;
+    for(Eigen::Index c = 0; c < layout.plain(); ++c)
+      if(column_weights[c] > 0) candidates.push_back(c);
+    const std::size_t m = std::min<std::size_t>(candidates.size(),
+                                                std::size_t(std::max(0, s.number_of_operator_descriptors)));
+    for(std::size_t i = 0; i < m; ++i)
+      operator_columns.push_back(candidates[(i * candidates.size() + candidates.size() / (2 * m)) / m]);
+  }
+  if(!landmarks.empty())
+  {
+    std::vector<int> p1, p2;
+    for(const auto& l : landmarks)
+    {
+      p1.push_back(l.first);
+      p2.push_back(l.second);
+    }
+    Eigen::MatrixXd L1 = landmark_wave_kernel_maps(basis1, values1, p1, s.number_of_landmark_energies);
+    Eigen::MatrixXd L2 = landmark_wave_kernel_maps(basis2, values2, p2, s.number_of_landmark_energies);
+    normalise(L1, mass1);
+    normalise(L2, mass2);
+    const Eigen::Index d = D1.cols(), dl = L1.cols();
+    D1.conservativeResize(Eigen::NoChange, d + dl);
+    D2.conservativeResize(Eigen::NoChange, d + dl);
+    D1.rightCols(dl) = L1;
+    D2.rightCols(dl) = L2;
+    column_weights.conservativeResize(d + dl);
+    column_weights.tail(dl).setConstant(s.landmark_descriptor_weight);
+  }
+  const Eigen::Index signed_begin = layout.plain(), signed_count = Eigen::Index(layout.signed_pairs.size());
+  if(orientation_sign < 0) D2.middleCols(signed_begin, signed_count) *= -1.0;
+
+  // Reduced terms at the largest candidate size (smaller ones are leading blocks).
+  Functional_map_shape_terms T1, T2;
+  invoke_both<ConcurrencyTag>(
+      [&] {
+        T1 = initialization_terms<ConcurrencyTag>(m1, basis1.leftCols(kmax), mass1, values1.head(kmax), A1, D1,
+                                                  operator_columns, s);
+      },
+      [&] {
+        T2 = initialization_terms<ConcurrencyTag>(m2, basis2.leftCols(kmax), mass2, values2.head(kmax), A2, D2,
+                                                  operator_columns, s);
+      });
+
+  // Samples for the ZoomOut iterations and the ZoomOut features (weighted descriptors).
+  std::vector<int> rows1, rows2;
+  invoke_both<ConcurrencyTag>([&] { rows1 = zoomout_samples(m1, s.zoomout_number_of_samples); },
+                              [&] { rows2 = zoomout_samples(m2, s.zoomout_number_of_samples); });
+  Eigen::MatrixXd features1, features2;
+  Zoomout_features features12, features21;
+  // Feature weights: sqrt(w_c / sum w) times the ZoomOut descriptor weight, for all columns or the
+  // signed ones only.
+  Eigen::VectorXd feature_weights = column_weights;
+  if(s.zoomout_signed_features_only && signed_count > 0)
+  {
+    feature_weights.setZero();
+    feature_weights.segment(signed_begin, signed_count) = column_weights.segment(signed_begin, signed_count);
+  }
+  if(feature_weights.sum() > 0)
+    feature_weights = (feature_weights / feature_weights.sum()).cwiseSqrt() * s.zoomout_descriptor_weight;
+  auto make_features = [&](const Eigen::MatrixXd& D) {
+    std::vector<Eigen::Index> used;
+    for(Eigen::Index c = 0; c < feature_weights.size(); ++c)
+      if(feature_weights[c] > 0) used.push_back(c);
+    Eigen::MatrixXd F(D.rows(), Eigen::Index(used.size()));
+    for(std::size_t i = 0; i < used.size(); ++i) F.col(Eigen::Index(i)) = feature_weights[used[i]] * D.col(used[i]);
+    return F;
+  };
+  if(s.zoomout_descriptor_weight > 0)
+  {
+    features1 = make_features(D1);
+    features2 = make_features(D2);
+    features12.source = features21.target = &features1;
+    features12.target = features21.source = &features2;
+  }
+  Zoomout_settings zs;
+  zs.step = s.zoomout_step;
+  zs.landmark_weight = s.zoomout_landmark_weight;
+  zs.bijectivity_weight = s.zoomout_bijectivity_weight;
+  zs.feature_final_ratio = s.zoomout_descriptor_final_ratio;
+
+  // Candidates: fits of both directions for every configuration (and, with landmarks, for both
+  // orientations), each refined by a short ZoomOut to the selection size and scored by the
+  // weighted descriptor distance between matched sample vertices.
+  struct Candidate
+  {
+    Fit_candidate config;
+    int sign;
+    Eigen::MatrixXd C12, C21;     // after the short ZoomOut
+    double score12 = 0, score21 = 0;
+  };
+  std::vector<Candidate> candidates;
+  const std::vector<int> signs = landmarks.empty() ? std::vector<int>{1} : std::vector<int>{1, -1};
+  for(int sign : signs)
+    for(const Fit_candidate& c : s.candidates) candidates.push_back({c, sign, {}, {}});
+  const int k_select = std::min(std::max(s.selection_size, kmax), kf);
+  Zoomout_settings select_settings = zs;
+  select_settings.final_size = k_select;
+  auto score = [&](const Eigen::MatrixXd& Da, const Eigen::MatrixXd& Db, const std::vector<int>& rows,
+                   const std::vector<int>& map_rows) {
+    double total = 0;
+    for(std::size_t r = 0; r < rows.size(); ++r)
+      total += (Da.row(rows.empty() ? int(r) : rows[r]) - Db.row(map_rows[r])).cwiseAbs2().dot(column_weights);
+    return total / (double(map_rows.size()) * column_weights.sum());
+  };
+  auto run_candidate = [&](Candidate& c) {
+    Functional_map_shape_terms a = leading_terms(T1, c.config.basis_size);
+    Functional_map_shape_terms b = leading_terms(T2, c.config.basis_size);
+    normalize_operator_pairs(a, b);
+    Functional_map_weights w = s.weights;
+    w.orientation = c.config.orientation_weight;
+    w.commutativity = c.config.commutativity_weight;
+    w.orientation_sign = orientation_sign * c.sign;
+    Functional_map_shape_terms b2 = b;
+    if(c.sign < 0)
+    {
+      // The mirror hypothesis: the signed descriptors of mesh 2 change sign.
+      b2.descriptor_coefficients.middleCols(signed_begin, signed_count) *= -1.0;
+    }
+    Eigen::MatrixXd C12 = minimize_functional_map_energy(a, b2, w, column_weights);
+    Eigen::MatrixXd C21 = minimize_functional_map_energy(b2, a, w, column_weights);
+    if(s.procrustes)
+    {
+      C12 = nearest_orthogonal(C12);
+      C21 = nearest_orthogonal(C21);
+    }
+    Eigen::MatrixXd F2 = D2;
+    if(c.sign < 0) F2.middleCols(signed_begin, signed_count) *= -1.0;
+    // Short ZoomOut on the samples, then the score of the sample matches.
+    std::vector<int> t12, t21;
+    c.C12 = zoomout_refine<CGAL::Sequential_tag>(basis1, mass1, basis2, C12, select_settings, rows1, landmarks,
+                                                 t12, Zoomout_features(), true);
+    c.C21 = zoomout_refine<CGAL::Sequential_tag>(basis2, mass2, basis1, C21, select_settings, rows2, landmarks21,
+                                                 t21, Zoomout_features(), true);
+    c.score12 = score(D1, F2, rows1, t12);
+    c.score21 = score(F2, D1, rows2, t21);
+  };
+  parallel_for<ConcurrencyTag>(candidates.size(), [&](std::size_t i) { run_candidate(candidates[i]); });
+  std::size_t best12 = 0, best21 = 0;
+  for(std::size_t i = 1; i < candidates.size(); ++i)
+  {
+    if(candidates[i].score12 < candidates[best12].score12) best12 = i;
+    if(candidates[i].score21 < candidates[best21].score21) best21 = i;
+  }
+  if(!landmarks.empty() && candidates[best12].sign != candidates[best21].sign)
+  {
+    // Both directions must agree on the orientation: keep the one of lower total score.
+    auto best_with = [&](int sign, bool forward) {
+      std::size_t b = candidates.size();
+      for(std::size_t i = 0; i < candidates.size(); ++i)
+        if(candidates[i].sign == sign &&
+           (b == candidates.size() ||
+            (forward ? candidates[i].score12 < candidates[b].score12 : candidates[i].score21 < candidates[b].score21)))
+          b = i;
+      return b;
+    };
+    const std::size_t p12 = best_with(1, true), p21 = best_with(1, false);
+    const std::size_t q12 = best_with(-1, true), q21 = best_with(-1, false);
+    if(candidates[p12].score12 + candidates[p21].score21 <= candidates[q12].score12 + candidates[q21].score21)
+    {
+      best12 = p12;
+      best21 = p21;
+    }
+    else
+    {
+      best12 = q12;
+      best21 = q21;
+    }
+  }
+  if(s.verbose)
+    for(std::size_t i = 0; i < candidates.size(); ++i)
+      std::cerr << "  candidate " << i << ": k0 " << candidates[i].config.basis_size << ", w_o "
+                << candidates[i].config.orientation_weight << ", w_c " << candidates[i].config.commutativity_weight
+                << ", sign " << candidates[i].sign << ": scores " << candidates[i].score12 << " "
+                << candidates[i].score21 << "\n";
+  const int sign = candidates[best12].sign;
+  result.orientation_sign = orientation_sign * sign;
+  result.initial_basis_size = candidates[best12].config.basis_size;
+  Eigen::MatrixXd C12 = candidates[best12].C12, C21 = candidates[best21].C21;
+  result.descriptor_residual = 0.5 * (candidates[best12].score12 + candidates[best21].score21);
+  if(sign < 0)
+  {
+    D2.middleCols(signed_begin, signed_count) *= -1.0;
+    if(s.zoomout_descriptor_weight > 0) features2 = make_features(D2);
+  }
+  result.functional_map_seconds = seconds_since(fit_start);
+  if(s.verbose)
+    std::cerr << "automatic_initial_maps: " << candidates.size() << " candidates in "
+              << result.functional_map_seconds << " s; chosen " << best12 << " and " << best21
+              << " (scores " << candidates[best12].score12 << ", " << candidates[best21].score21
+              << "), orientation " << result.orientation_sign << "\n";
+
+  // ZoomOut from the selection size to the final size.
+  const Clock::time_point zoom_start = Clock::now();
+  zs.final_size = kf;
+  std::vector<int> t12, t21;
+  if(s.coupled_zoomout)
+    coupled_zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, mass2, C12, C21, zs, rows1, rows2,
+                                           landmarks, t12, t21, features12);
+  else
+  {
+    C12 = zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, C12, zs, rows1, landmarks, t12, features12);
+    C21 = zoomout_refine<ConcurrencyTag>(basis2, mass2, basis1, C21, zs, rows2, landmarks21, t21, features21);
+  }
+  result.zoomout_seconds = seconds_since(zoom_start);
+
+  double e1, f1, e2, f2;
+  cycle_statistics(m1, t12, t21, e1, f1);
+  cycle_statistics(m2, t21, t12, e2, f2);
+  result.cycle_error = (e1 * n1 + e2 * n2) / double(n1 + n2);
+  result.cycle_fixed_fraction = (f1 * n1 + f2 * n2) / double(n1 + n2);
+  {
+    const Indexed_mesh::Points normals1 = vertex_normals(m1), normals2 = vertex_normals(m2);
+    const double o12 = orientation_agreement(m1, m2, normals2, t12);
+    const double o21 = orientation_agreement(m2, m1, normals1, t21);
+    result.orientation_agreement = 0.5 * (o12 + o21);
+  }
+  result.functional_map_12 = C12;
+  result.functional_map_21 = C21;
+  map_12.assign(t12.begin(), t12.end());
+  map_21.assign(t21.begin(), t21.end());
+  result.total_seconds = seconds_since(start);
+  if(s.verbose)
+    std::cerr << "automatic_initial_maps: ZoomOut to " << kf << " in " << result.zoomout_seconds
+              << " s, cycle error " << result.cycle_error << ", fixed " << result.cycle_fixed_fraction
+              << ", orientation agreement " << result.orientation_agreement << "\n";
+  return result;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Computes initial point-to-point maps between two meshes in both directions, automatically.
+///
+/// Pipeline: the Laplace-Beltrami spectra and WKS descriptors of both meshes; functional maps
+/// \f$ C_{12} \f$ and \f$ C_{21} \f$ of size `spectral_basis_size`, each minimising the energy of
+/// fit_functional_map() (descriptor preservation, Laplacian and descriptor commutativity, and the
+/// orientation-preserving term of Ren et al. 2018, which rules out left/right mirror maps); then a
+/// coupled ZoomOut (Melzi et al. 2019) that grows both maps to `zoomout_final_size`, each step
+/// matching every vertex to its nearest neighbour in the joint embedding
+/// \f$ [\Phi_1 C_{12}, \Phi_1] \f$ vs. \f$ [\Phi_2, \Phi_2 C_{21}] \f$ (which favours inverse
+/// pairs of maps) and refitting.
+///
+/// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
+/// orientations (signed volumes of opposite signs) the orientation term is reversed
+/// automatically. With landmarks, both orientations are fitted and the one of lower total
+/// selection score is kept, so landmarks may select a mirror map.
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (TBB: the two spectra
+///   and the nearest-neighbour searches in parallel)
+/// \tparam TriangleMesh1 a model of `FaceListGraph`
+/// \tparam TriangleMesh2 a model of `FaceListGraph`
+/// \tparam NamedParameters a sequence of named parameters
+/// \param tm1 the first mesh (connected)
+/// \param tm2 the second mesh (connected)
+/// \param map_12 output: `map_12[i]` is the index of the vertex of `tm2` matched to vertex i of
+///   `tm1` (indices of the vertex index maps)
+/// \param map_21 output: the same from `tm2` to `tm1`
+/// \param np optional named parameters among:
+///   - `spectral_basis_size`: \f$ k_0 \f$, the size of the fitted functional maps; type `int`.
+///     By default four fits are tried ((k_0, w_o, w_c) = (20, 0.03, 0.3), (20, 0.1, 1), (30, 0.03,
+///     0.3), (30, 0.1, 1)) and the one of lowest descriptor distance after a short ZoomOut is
+///     kept; giving `spectral_basis_size`, `orientation_weight` or `commutativity_weight` fits a
+///     single configuration, the values not given taken from the first one.
+///   - `zoomout_final_size`: \f$ k_f \f$, the basis size after ZoomOut; type `int`; default 120.
+///   - `zoomout_step`: the basis growth per ZoomOut iteration; type `int`; default 5.
+///   - `number_of_eigenpairs`: eigenpairs computed, at least \f$ k_f \f$; type `int`; default
+///     \f$ k_f \f$.
+///   - `orientation_weight`: \f$ w_o \f$; type `double` (0 disables the term).
+///   - `commutativity_weight`: \f$ w_c \f$, descriptor commutativity; type `double`.
+///   - `wks_weight`, `hks_weight`: weights of the WKS and HKS descriptor columns; type `double`;
+///     defaults 1 and 0.
+///   - `number_of_wks_energies`, `wks_variance`, `number_of_hks_scales`: the descriptors (defaults
+///     100, 7, 16).
+///   - `landmarks`: known correspondences, a range of pairs (vertex index in `tm1`, vertex index in
+///     `tm2`) (e.g. `std::vector<std::pair<std::size_t, std::size_t>>`); default none.
+///   - `verbose`: print progress to `std::cerr`; type `bool`; default false.
+///   - `vertex_point_map`, `vertex_index_map`: for both meshes (use the same types); defaults the
+///     meshes' own.
+/// \returns timings and diagnostics.
+/// \pre both meshes are connected triangle meshes with more than \f$ k_f \f$ vertices (else
+///   Invalid_mesh_error); parameters in range (else Invalid_parameter_error).
+/// \throws Numerical_error if an eigensolver fails.
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename TriangleMesh2,
+          typename NamedParameters = parameters::Default_named_parameters>
+Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1, const TriangleMesh2& tm2,
+                                                       std::vector<std::size_t>& map_12,
+                                                       std::vector<std::size_t>& map_21,
+                                                       const NamedParameters& np = parameters::default_values())
+{
+  typedef std::chrono::steady_clock Clock;
+  const Clock::time_point start = Clock::now();
+  const internal::Initialization_settings s = internal::initialization_settings(np);
+  internal::check_initialization_settings(s);
+  internal::Mesh_requirements req;
+  req.allow_several_components = false;
+  const int k = internal::initialization_number_of_eigenpairs(s);
+  internal::Indexed_mesh m1, m2;
+  std::unique_ptr<Laplace_beltrami_spectrum> s1, s2;
+  Eigen::MatrixXd d1, d2;
+  auto prepare = [&](const auto& tm, internal::Indexed_mesh& m, std::unique_ptr<Laplace_beltrami_spectrum>& spectrum,
+                     Eigen::MatrixXd& descriptors, const char* name) {
+    m = internal::make_indexed_mesh(tm, np, req, name);
+    if(m.number_of_vertices() <= s.zoomout_final_size || m.number_of_vertices() <= k)
+      throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
+                               std::to_string(m.number_of_vertices()) +
+                               " vertices, too few for a basis of " + std::to_string(k) +
+                               " eigenfunctions (reduce zoomout_final_size)");
+    spectrum.reset(new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
+    descriptors = internal::initialization_descriptors<CGAL::Sequential_tag>(m, *spectrum, s);
+  };
+  auto prepare1 = [&] { prepare(tm1, m1, s1, d1, "mesh 1"); };
+  auto prepare2 = [&] { prepare(tm2, m2, s2, d2, "mesh 2"); };
+#ifdef CGAL_LINKED_WITH_TBB
+  if(internal::Is_parallel<ConcurrencyTag>::value)
+    tbb::parallel_invoke(prepare1, prepare2);
+  else
+#endif
+  {
+    prepare1();
+    prepare2();
+  }
+  const double prepare_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  internal::Initialization_shape a, b;
+  a.mesh = &m1;
+  a.spectrum = s1.get();
+  a.descriptors = &d1;
+  b.mesh = &m2;
+  b.spectrum = s2.get();
+  b.descriptors = &d2;
+  Automatic_initialization_result r = internal::automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
+  r.spectra_seconds = prepare_seconds;
+  r.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return r;
+}
+
+} // namespace Surface_mesh_correspondence
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_CORRESPONDENCE_AUTOMATIC_INITIALIZATION_H
