@@ -1,0 +1,154 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// comap on bad input: a non-zero exit code and one line on stderr that names the problem, never
+// a crash.
+
+#include "test_cli_helpers.h"
+
+#include <boost/test/unit_test.hpp>
+
+using namespace smc_cli_test;
+
+namespace {
+
+/// Runs comap and checks: exit code `code`, exactly one line on stderr, starting with "comap:"
+/// and containing every piece of `expected`.
+void expect_failure(const std::string& arguments, int code, const std::vector<std::string>& expected)
+{
+  const Run r = comap(arguments);
+  BOOST_TEST_CONTEXT("comap " << arguments << "\nstderr: " << r.err)
+  {
+    BOOST_TEST(r.code == code);
+    const std::vector<std::string> lines = r.err_lines();
+    BOOST_TEST_REQUIRE(lines.size() == 1u);
+    BOOST_TEST(lines[0].rfind("comap:", 0) == 0u);
+    for(const std::string& e : expected) BOOST_TEST(lines[0].find(e) != std::string::npos, "missing: " << e);
+  }
+}
+
+std::string match_args(const std::string& a, const std::string& b, const std::string& extra = "")
+{
+  return "match " + a + " " + b + " --out-12 " + in_scratch("o12.map") + " --out-21 " + in_scratch("o21.map") +
+         " --quiet" + extra;
+}
+
+/// The 4 vertices of a tetrahedron shifted by `dx`, as OFF lines.
+std::string tetrahedron(double dx)
+{
+  std::string s;
+  for(const char* p : {"0 0 0", "1 0 0", "0 1 0", "0 0 1"})
+  {
+    std::istringstream in(p);
+    double x, y, z;
+    in >> x >> y >> z;
+    s += std::to_string(x + dx) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+  }
+  return s;
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_SUITE(cli_bad_input)
+
+BOOST_AUTO_TEST_CASE(missing_and_unreadable_files)
+{
+  const Cli_pair& p = cli_pair();
+  expect_failure(match_args(in_scratch("missing.off"), p.b), 1, {"cannot open", "missing.off"});
+  write_text(in_scratch("garbage.off"), "this is not a mesh\n1 2 3\n");
+  expect_failure(match_args(in_scratch("garbage.off"), p.b), 1, {"garbage.off", "cannot read a mesh"});
+  write_text(in_scratch("points.xyz"), "0 0 0\n");
+  expect_failure(match_args(in_scratch("points.xyz"), p.b), 1, {"points.xyz", "unknown mesh format"});
+}
+
+BOOST_AUTO_TEST_CASE(meshes_that_are_not_connected_manifold_triangle_meshes)
+{
+  const Cli_pair& p = cli_pair();
+  // A quad (a square split in two would be fine).
+  write_text(in_scratch("quad.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  expect_failure(match_args(in_scratch("quad.off"), p.b), 1, {"quad.off", "not triangles", "4 vertices"});
+  // Three triangles on one edge.
+  write_text(in_scratch("fin.off"),
+             "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+  expect_failure(match_args(in_scratch("fin.off"), p.b), 1, {"fin.off", "not manifold", "edge (0, 1)", "3 faces"});
+  // Two triangles traversing their common edge in the same direction.
+  write_text(in_scratch("flipped.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 0 1 3\n");
+  expect_failure(match_args(in_scratch("flipped.off"), p.b), 1, {"flipped.off", "inconsistently oriented"});
+  // Two triangle fans meeting at one vertex (a bow tie).
+  write_text(in_scratch("bowtie.off"), "OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n-1 0 0\n-1 -1 0\n3 0 1 2\n3 0 3 4\n");
+  expect_failure(match_args(in_scratch("bowtie.off"), p.b), 1, {"bowtie.off", "not manifold", "vertex 0"});
+  // Two closed tetrahedra.
+  write_text(in_scratch("two.off"), "OFF\n8 8 0\n" + tetrahedron(0) + tetrahedron(3) +
+                                        "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 4 6 5\n3 4 5 7\n3 4 7 6\n3 5 6 7\n");
+  expect_failure(match_args(in_scratch("two.off"), p.b), 1, {"two.off", "2 connected components"});
+  // A vertex that no face uses.
+  write_text(in_scratch("isolated.off"), "OFF\n5 4 0\n" + tetrahedron(0) + "5 5 5\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  expect_failure(match_args(in_scratch("isolated.off"), p.b), 1, {"isolated.off", "vertex 4", "no face"});
+}
+
+BOOST_AUTO_TEST_CASE(bad_maps)
+{
+  const Cli_pair& p = cli_pair();
+  const std::size_t n1 = num_vertices(p.pair.m1), n2 = num_vertices(p.pair.m2);
+  write_map(in_scratch("good21.map"), p.pair.gt_21, 1);
+  std::vector<std::size_t> shorter(p.pair.gt_12.begin(), p.pair.gt_12.end() - 1);
+  write_map(in_scratch("short12.map"), shorter, 1);
+  const std::string init21 = " --init-21 " + in_scratch("good21.map");
+  expect_failure(match_args(p.a, p.b, " --init-12 " + in_scratch("short12.map") + init21), 1,
+                 {"short12.map", std::to_string(n1 - 1) + " entries", std::to_string(n1) + " vertices"});
+  std::vector<std::size_t> out_of_range = p.pair.gt_12;
+  out_of_range[7] = n2;  // one past the last vertex
+  write_map(in_scratch("range12.map"), out_of_range, 1);
+  expect_failure(match_args(p.a, p.b, " --init-12 " + in_scratch("range12.map") + init21), 1,
+                 {"range12.map", "entry 7", "out of range"});
+  // A 0-based file read as 1-based: its 0 is below the index base.
+  write_map(in_scratch("zero12.map"), p.pair.gt_12, 0);
+  expect_failure(match_args(p.a, p.b, " --init-12 " + in_scratch("zero12.map") + init21), 1,
+                 {"zero12.map", "below the index base"});
+  write_text(in_scratch("text12.map"), "1\n2\nthree\n");
+  expect_failure(match_args(p.a, p.b, " --init-12 " + in_scratch("text12.map") + init21), 1,
+                 {"text12.map:3", "expected one vertex index"});
+  // Landmark files: bad lines and out-of-range pairs are named; landmarks need the automatic maps.
+  write_text(in_scratch("bad.lmk"), "1 2\n3\n");
+  expect_failure(match_args(p.a, p.b, " --landmarks " + in_scratch("bad.lmk")), 1,
+                 {"bad.lmk:2", "two vertex indices"});
+  write_text(in_scratch("range.lmk"), "# source target\n1 " + std::to_string(n2 + 1) + "\n");
+  expect_failure(match_args(p.a, p.b, " --landmarks " + in_scratch("range.lmk")), 1, {"range.lmk:2", "out of range"});
+  expect_failure(match_args(p.a, p.b, " --landmarks " + in_scratch("missing.lmk")), 1, {"missing.lmk"});
+  write_text(in_scratch("good.lmk"), "1 1\n");
+  expect_failure(match_args(p.a, p.b, " --landmarks " + in_scratch("good.lmk") + " --init-12 " +
+                                          in_scratch("range12.map") + init21),
+                 2, {"--landmarks"});
+  // eval: ground-truth lists of different lengths.
+  write_map(in_scratch("ids.vts"), identity(n1), 1);
+  write_map(in_scratch("gt_short.vts"), shorter, 1);
+  write_map(in_scratch("gt12.map"), p.pair.gt_12, 1);
+  expect_failure("eval --source " + p.a + " --target " + p.b + " --map " + in_scratch("gt12.map") + " --gt-source " +
+                     in_scratch("ids.vts") + " --gt-target " + in_scratch("gt_short.vts"),
+                 1, {"samples"});
+}
+
+BOOST_AUTO_TEST_CASE(bad_options)
+{
+  const Cli_pair& p = cli_pair();
+  expect_failure(match_args(p.a, p.b, " --candidates abc"), 2, {"--candidates", "not an integer"});
+  expect_failure(match_args(p.a, p.b, " --mu -1"), 2, {"unary_weight"});
+  expect_failure(match_args(p.a, p.b, " --rings 3,,2"), 2, {"--rings"});
+  expect_failure(match_args(p.a, p.b, " --coupling maybe"), 2, {"--coupling", "on or off"});
+  expect_failure(match_args(p.a, p.b, " --oracle fast"), 2, {"--oracle", "auto, dense, local"});
+  expect_failure(match_args(p.a, p.b, " --index-base 2"), 2, {"--index-base"});
+  expect_failure(match_args(p.a, p.b, " --frobnicate"), 2, {"unknown option --frobnicate"});
+  expect_failure(match_args(p.a, p.b, " --init-12 " + in_scratch("x.map")), 2, {"--init-21"});
+  expect_failure("match " + p.a + " " + p.b + " --quiet", 2, {"--out-12"});
+  expect_failure("match " + p.a + " --out-12 a --out-21 b", 2, {"two meshes"});
+  expect_failure("match " + p.a + " " + p.b + " --out-12 /nonexistent/dir/a.map --out-21 b.map", 1,
+                 {"/nonexistent/dir", "does not exist"});
+  expect_failure("frobnicate", 2, {"unknown command"});
+  expect_failure("bench --data " + in_scratch("nothing") + " --out " + in_scratch("b"), 1, {"not a directory"});
+  write_map(in_scratch("gt12.map"), p.pair.gt_12, 1);
+  expect_failure("transfer --source " + p.a + " --target " + p.b + " --map-12 " + in_scratch("gt12.map") + " --out " +
+                     in_scratch("t.ply") + " --texture " + p.a,
+                 1, {"PNG"});
+}
+
+BOOST_AUTO_TEST_SUITE_END()

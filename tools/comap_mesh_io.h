@@ -1,0 +1,55 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// comap: reading meshes (every format of CGAL::IO::read_polygon_soup) with checks whose
+// messages name the file and the problem, reading and writing vertex maps, and writing
+// vertex-coloured PLY files.
+
+#ifndef SMC_TOOLS_COMAP_MESH_IO_H
+#define SMC_TOOLS_COMAP_MESH_IO_H
+
+#include "comap_common.h"
+
+#include <CGAL/Surface_mesh_correspondence/map_io.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace comap {
+
+typedef CGAL::Surface_mesh_correspondence::Vertex_index_map_vector Vertex_map;
+
+/// An RGB colour with components in [0, 1].
+typedef std::array<double, 3> Color;
+
+/// Reads a connected, manifold, consistently oriented triangle mesh from an OFF, PLY, OBJ or STL
+/// file. Vertex i of the result is the i-th point of the file (maps refer to it).
+/// \throws CGAL::Surface_mesh_correspondence::IO_error (missing, unreadable or empty file,
+///   unknown format) or Invalid_mesh_error (non-triangle faces, degenerate faces, non-manifold
+///   or inconsistently oriented faces, isolated vertices, several connected components), each
+///   with a message that starts with the file name.
+Mesh read_triangle_mesh(const std::string& file);
+
+/// Reads a vertex map (one index per line) and checks it against the vertex counts of its
+/// source and target meshes. \throws IO_error, Invalid_map_error naming the file.
+Vertex_map read_vertex_map(const std::string& file, int index_base, std::size_t source_vertices,
+                           std::size_t target_vertices);
+
+/// Reads a ground-truth correspondence list and checks every entry is a vertex of a mesh of
+/// `mesh_vertices` vertices.
+Vertex_map read_correspondences(const std::string& file, int index_base, std::size_t mesh_vertices);
+
+/// Writes a vertex map, one index per line.
+void write_vertex_map(const std::string& file, const Vertex_map& map, int index_base);
+
+/// Writes `mesh` as an ASCII PLY with one colour per vertex (red, green, blue as uchar), which
+/// MeshLab, Blender and ParaView display directly.
+void write_colored_ply(const std::string& file, const Mesh& mesh, const std::vector<Color>& colors);
+
+/// Writes `mesh` as OFF.
+void write_off(const std::string& file, const Mesh& mesh);
+
+} // namespace comap
+
+#endif // SMC_TOOLS_COMAP_MESH_IO_H

@@ -1,0 +1,46 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// comap: every algorithm parameter of the library as a command-line option. The defaults shown
+// by --help are read from the library's own settings structs (Refinement_settings,
+// Shape_settings, Descriptor_settings, Initialization_settings), never copied.
+
+#ifndef SMC_TOOLS_COMAP_SETTINGS_H
+#define SMC_TOOLS_COMAP_SETTINGS_H
+
+#include "comap_json.h"
+#include "comap_options.h"
+
+#include <CGAL/Surface_mesh_correspondence/automatic_initialization.h>
+#include <CGAL/Surface_mesh_correspondence/refine_coupled_maps.h>
+
+namespace comap {
+
+namespace smc = CGAL::Surface_mesh_correspondence;
+
+/// The parameters of a whole matching run.
+struct Settings
+{
+  smc::internal::Shape_settings shape;                 ///< spectrum, descriptor stack, distance oracle
+  smc::Refinement_settings refinement;                  ///< Algorithm 1
+  smc::internal::Initialization_settings initialization; ///< automatic initial maps
+  /// Refinement_settings::keep_consistent_input_maps: 1 on, 0 off, -1 automatic (on for given
+  /// initial maps, off for automatic ones, which are consistent by construction).
+  int keep_consistent_input_maps = -1;
+};
+
+/// Registers the options of every algorithm parameter (refinement, shape preparation and, when
+/// `with_initialization`, automatic initialisation) on `parser`, writing into `settings`.
+void add_algorithm_options(Option_parser& parser, Settings& settings, bool with_initialization);
+
+/// Checks the settings with the library's own checks; throws Usage_error with its message.
+void check_settings(const Settings& settings, bool with_initialization);
+
+/// Writes the settings as a JSON object named `key`.
+void write_settings(Json_writer& json, const std::string& key, const Settings& settings, bool with_initialization);
+
+const char* oracle_name(smc::Distance_oracle_type t);
+
+} // namespace comap
+
+#endif // SMC_TOOLS_COMAP_SETTINGS_H
