@@ -81,7 +81,7 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           "on: return the input maps unchanged when no refined iterate is more consistent (the paper's rule); "
           "off: return the most consistent refined iterate; auto: on for given initial maps, off for automatic "
           "ones (consistent by construction)",
-          "auto", [&s](const std::string& v) {
+          "on", [&s](const std::string& v) {
             s.keep_consistent_input_maps = parse_choice("--keep-input", v, {"off", "on", "auto"});
             if(s.keep_consistent_input_maps == 2) s.keep_consistent_input_maps = -1;
           });
