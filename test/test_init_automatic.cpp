@@ -5,6 +5,7 @@
 
 #include <CGAL/Surface_mesh_correspondence/automatic_initialization.h>
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
+#include <CGAL/Surface_mesh_correspondence/refine_coupled_maps.h>
 
 #include "test_pairs.h"
 
@@ -231,6 +232,25 @@ BOOST_AUTO_TEST_CASE(results_are_deterministic_and_parallel_matches_sequential)
   BOOST_TEST(a21 == b21);
   BOOST_TEST(a12 == c12);
   BOOST_TEST(a21 == c21);
+}
+
+BOOST_AUTO_TEST_CASE(prepared_shapes_give_the_same_maps)
+{
+  // The stateful path reuses each shape's flat mesh and (with enough eigenpairs) its spectrum.
+  const Pair_fixture& f = asymmetric();
+  std::vector<std::size_t> a12, a21, b12, b21, c12, c21;
+  smc::automatic_initial_maps(f.pair.m1, f.pair.m2, a12, a21);
+  const smc::Correspondence_shape<Mesh> s1(f.pair.m1, params::number_of_eigenpairs(120)),
+      s2(f.pair.m2, params::number_of_eigenpairs(40));  // reused / recomputed
+  smc::automatic_initial_maps(s1, s2, b12, b21);
+  BOOST_TEST(a12 == b12);
+  BOOST_TEST(a21 == b21);
+  // Then refined with the same shapes.
+  smc::refine_coupled_maps(s1, s2, b12, b21);
+  BOOST_TEST(f.error_12(b12, f.pair.gt_12) < 0.015);
+  const Mesh tiny = icosphere(1);
+  const smc::Correspondence_shape<Mesh> small(tiny, params::number_of_eigenpairs(10));
+  BOOST_CHECK_THROW(smc::automatic_initial_maps(small, s2, c12, c21), smc::Invalid_mesh_error);
 }
 
 BOOST_AUTO_TEST_CASE(units_do_not_matter)

@@ -8,6 +8,7 @@
 #ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_AUTOMATIC_INITIALIZATION_H
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_AUTOMATIC_INITIALIZATION_H
 
+#include <CGAL/Surface_mesh_correspondence/Correspondence_shape.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/functional_map.h>
 #include <CGAL/Surface_mesh_correspondence/heat_kernel_signature.h>
@@ -907,6 +908,63 @@ Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1,
   a.descriptors = &d1;
   b.mesh = &m2;
   b.spectrum = s2.get();
+  b.descriptors = &d2;
+  Automatic_initialization_result r = internal::automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
+  r.spectra_seconds = prepare_seconds;
+  r.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return r;
+}
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// automatic_initial_maps() on two prepared shapes (the stateful path: match one shape against
+/// many). The shapes' flat meshes are reused, and their spectra too when they have at least the
+/// eigenpairs the initialisation needs on the intrinsic Delaunay triangulation (prepare them with
+/// `number_of_eigenpairs(120)` for the defaults); otherwise the missing spectrum is computed.
+/// The maps are then exactly those of the mesh-based overload with the same named parameters
+/// (`np`: the initialisation's parameters, as there), and can be passed to
+/// refine_coupled_maps() with the same shapes.
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename Tag1,
+          typename TriangleMesh2, typename Tag2, typename NamedParameters = parameters::Default_named_parameters>
+Automatic_initialization_result automatic_initial_maps(const Correspondence_shape<TriangleMesh1, Tag1>& shape_1,
+                                                       const Correspondence_shape<TriangleMesh2, Tag2>& shape_2,
+                                                       std::vector<std::size_t>& map_12,
+                                                       std::vector<std::size_t>& map_21,
+                                                       const NamedParameters& np = parameters::default_values())
+{
+  typedef std::chrono::steady_clock Clock;
+  const Clock::time_point start = Clock::now();
+  const internal::Initialization_settings s = internal::initialization_settings(np);
+  internal::check_initialization_settings(s);
+  const int k = internal::initialization_number_of_eigenpairs(s);
+  std::unique_ptr<Laplace_beltrami_spectrum> own1, own2;
+  Eigen::MatrixXd d1, d2;
+  auto prepare = [&](const internal::Shape_data& data, std::unique_ptr<Laplace_beltrami_spectrum>& own,
+                     Eigen::MatrixXd& descriptors, const char* name) {
+    const internal::Indexed_mesh& m = data.mesh;
+    if(m.number_of_components != 1)
+      throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
+                               std::to_string(m.number_of_components) + " connected components");
+    if(m.number_of_vertices() <= s.zoomout_final_size || m.number_of_vertices() <= k)
+      throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
+                               std::to_string(m.number_of_vertices()) +
+                               " vertices, too few for a basis of " + std::to_string(k) +
+                               " eigenfunctions (reduce zoomout_final_size)");
+    const Laplace_beltrami_spectrum& given = *data.spectrum;
+    // The mesh-based overload computes exactly k eigenpairs: reuse only an identical spectrum.
+    if(given.number_of_eigenpairs() != k || !given.uses_intrinsic_delaunay())
+      own.reset(new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
+    descriptors = internal::initialization_descriptors<CGAL::Sequential_tag>(m, own ? *own : given, s);
+  };
+  auto prepare1 = [&] { prepare(shape_1.data(), own1, d1, "mesh 1"); };
+  auto prepare2 = [&] { prepare(shape_2.data(), own2, d2, "mesh 2"); };
+  internal::invoke_both<ConcurrencyTag>(prepare1, prepare2);
+  const double prepare_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  internal::Initialization_shape a, b;
+  a.mesh = &shape_1.data().mesh;
+  a.spectrum = own1 ? own1.get() : shape_1.data().spectrum.get();
+  a.descriptors = &d1;
+  b.mesh = &shape_2.data().mesh;
+  b.spectrum = own2 ? own2.get() : shape_2.data().spectrum.get();
   b.descriptors = &d2;
   Automatic_initialization_result r = internal::automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
   r.spectra_seconds = prepare_seconds;
