@@ -71,22 +71,6 @@ std::vector<double> fast_marching(const smci::Indexed_mesh& m, int s,
   return d;
 }
 
-template <typename F>
-std::string error_of(F&& f)
-{
-  try
-  {
-    f();
-  }
-  catch(const smc::Error& e)
-  {
-    return e.what();
-  }
-  return "no exception";
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 } // namespace
 
 BOOST_AUTO_TEST_SUITE(geodesic_distances)

@@ -103,22 +103,6 @@ std::vector<int> reference_fps(const smci::Indexed_mesh& m, const std::vector<in
   return out;
 }
 
-template <typename F>
-std::string error_of(F&& f)
-{
-  try
-  {
-    f();
-  }
-  catch(const smc::Error& e)
-  {
-    return e.what();
-  }
-  return "no exception";
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 } // namespace
 
 BOOST_AUTO_TEST_SUITE(neighborhoods)

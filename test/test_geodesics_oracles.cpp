@@ -42,22 +42,6 @@ Mesh bumpy_capsule()
   });
 }
 
-template <typename F>
-std::string error_of(F&& f)
-{
-  try
-  {
-    f();
-  }
-  catch(const smc::Error& e)
-  {
-    return e.what();
-  }
-  return "no exception";
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 } // namespace
 
 BOOST_AUTO_TEST_SUITE(distance_oracles)

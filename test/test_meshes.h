@@ -9,11 +9,14 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/exceptions.h>
 
 #include <array>
 #include <cmath>
 #include <functional>
 #include <map>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -297,6 +300,28 @@ inline Mesh disjoint_union(const Mesh& a, const Mesh& b)
   }
   return out;
 }
+
+/// The message of the exception of type E (default: any of the package's) that f() throws;
+/// "wrong exception: ..." for another exception, "no exception" when it returns.
+template <typename E = CGAL::Surface_mesh_correspondence::Error, typename F>
+std::string error_of(F&& f)
+{
+  try
+  {
+    f();
+  }
+  catch(const E& e)
+  {
+    return e.what();
+  }
+  catch(const std::exception& e)
+  {
+    return std::string("wrong exception: ") + e.what();
+  }
+  return "no exception";
+}
+
+inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 } // namespace smc_test
 

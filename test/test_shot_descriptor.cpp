@@ -89,7 +89,6 @@ std::string error_message(F&& f)
   return "no exception";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 /// Sum of the descriptor over all sectors, per cosine bin.
 std::vector<double> cosine_marginal(const Eigen::RowVectorXd& d)

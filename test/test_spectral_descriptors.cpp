@@ -74,7 +74,6 @@ std::string parameter_error_of(F&& f)
   return "no exception";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 } // namespace
 

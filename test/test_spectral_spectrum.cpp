@@ -81,25 +81,6 @@ std::vector<int> same_vertices(const Mesh& a, const MeshB& b)
   return out;
 }
 
-template <typename Exception, typename F>
-std::string error_of(F&& f)
-{
-  try
-  {
-    f();
-  }
-  catch(const Exception& e)
-  {
-    return e.what();
-  }
-  catch(const std::exception& e)
-  {
-    return std::string("wrong exception: ") + e.what();
-  }
-  return "no exception";
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 } // namespace
 
