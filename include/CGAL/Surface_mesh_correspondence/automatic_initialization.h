@@ -808,6 +808,64 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
   return result;
 }
 
+/// The spectrum and the descriptors of one flat mesh for automatic_initial_maps(): `given` is
+/// reused when it has exactly the eigenpairs the initialisation needs on the intrinsic Delaunay
+/// triangulation (then the maps equal those computed from the mesh alone), else computed.
+struct Initialization_mesh_data
+{
+  std::unique_ptr<Laplace_beltrami_spectrum> own_spectrum;
+  const Laplace_beltrami_spectrum* spectrum = nullptr;
+  Eigen::MatrixXd descriptors;
+};
+
+inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_beltrami_spectrum* given,
+                                        const Initialization_settings& s, const char* name,
+                                        Initialization_mesh_data& out)
+{
+  const int k = initialization_number_of_eigenpairs(s);
+  // Checked before the eigensolver, which would fail with a less helpful message.
+  if(m.number_of_vertices() <= s.zoomout_final_size || m.number_of_vertices() <= k)
+    throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
+                             std::to_string(m.number_of_vertices()) + " vertices, too few for a basis of " +
+                             std::to_string(k) + " eigenfunctions (reduce zoomout_final_size)");
+  if(given && given->number_of_eigenpairs() == k && given->uses_intrinsic_delaunay())
+    out.spectrum = given;
+  else
+  {
+    out.own_spectrum.reset(new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
+    out.spectrum = out.own_spectrum.get();
+  }
+  out.descriptors = initialization_descriptors<CGAL::Sequential_tag>(m, *out.spectrum, s);
+}
+
+/// Both public overloads of automatic_initial_maps(): prepares the two flat meshes (in parallel
+/// with Parallel_tag) and runs the core; the times count from `start`.
+template <typename ConcurrencyTag>
+Automatic_initialization_result automatic_initial_maps_of_meshes(
+    const Indexed_mesh& m1, const Laplace_beltrami_spectrum* given1, const Indexed_mesh& m2,
+    const Laplace_beltrami_spectrum* given2, const Initialization_settings& s, std::vector<std::size_t>& map_12,
+    std::vector<std::size_t>& map_21, std::chrono::steady_clock::time_point start)
+{
+  auto since_start = [start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  Initialization_mesh_data d1, d2;
+  invoke_both<ConcurrencyTag>([&] { prepare_initialization_mesh(m1, given1, s, "mesh 1", d1); },
+                              [&] { prepare_initialization_mesh(m2, given2, s, "mesh 2", d2); });
+  const double prepare_seconds = since_start();
+  Initialization_shape a, b;
+  a.mesh = &m1;
+  a.spectrum = d1.spectrum;
+  a.descriptors = &d1.descriptors;
+  b.mesh = &m2;
+  b.spectrum = d2.spectrum;
+  b.descriptors = &d2.descriptors;
+  Automatic_initialization_result r = automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
+  r.spectra_seconds = prepare_seconds;
+  r.total_seconds = since_start();
+  return r;
+}
+
 } // namespace internal
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
@@ -869,57 +927,23 @@ Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1,
                                                        std::vector<std::size_t>& map_21,
                                                        const NamedParameters& np = parameters::default_values())
 {
-  typedef std::chrono::steady_clock Clock;
-  const Clock::time_point start = Clock::now();
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   const internal::Initialization_settings s = internal::initialization_settings(np);
   internal::check_initialization_settings(s);
   internal::Mesh_requirements req;
   req.allow_several_components = false;
-  const int k = internal::initialization_number_of_eigenpairs(s);
-  internal::Indexed_mesh m1, m2;
-  std::unique_ptr<Laplace_beltrami_spectrum> s1, s2;
-  Eigen::MatrixXd d1, d2;
-  auto prepare = [&](const auto& tm, internal::Indexed_mesh& m, std::unique_ptr<Laplace_beltrami_spectrum>& spectrum,
-                     Eigen::MatrixXd& descriptors, const char* name) {
-    m = internal::make_indexed_mesh(tm, np, req, name);
-    if(m.number_of_vertices() <= s.zoomout_final_size || m.number_of_vertices() <= k)
-      throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
-                               std::to_string(m.number_of_vertices()) +
-                               " vertices, too few for a basis of " + std::to_string(k) +
-                               " eigenfunctions (reduce zoomout_final_size)");
-    spectrum.reset(new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
-    descriptors = internal::initialization_descriptors<CGAL::Sequential_tag>(m, *spectrum, s);
-  };
-  auto prepare1 = [&] { prepare(tm1, m1, s1, d1, "mesh 1"); };
-  auto prepare2 = [&] { prepare(tm2, m2, s2, d2, "mesh 2"); };
-#ifdef CGAL_LINKED_WITH_TBB
-  if(internal::Is_parallel<ConcurrencyTag>::value)
-    tbb::parallel_invoke(prepare1, prepare2);
-  else
-#endif
-  {
-    prepare1();
-    prepare2();
-  }
-  const double prepare_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  internal::Initialization_shape a, b;
-  a.mesh = &m1;
-  a.spectrum = s1.get();
-  a.descriptors = &d1;
-  b.mesh = &m2;
-  b.spectrum = s2.get();
-  b.descriptors = &d2;
-  Automatic_initialization_result r = internal::automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
-  r.spectra_seconds = prepare_seconds;
-  r.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return r;
+  const internal::Indexed_mesh m1 = internal::make_indexed_mesh(tm1, np, req, "mesh 1");
+  const internal::Indexed_mesh m2 = internal::make_indexed_mesh(tm2, np, req, "mesh 2");
+  return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(m1, nullptr, m2, nullptr, s, map_12, map_21,
+                                                                    start);
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// automatic_initial_maps() on two prepared shapes (the stateful path: match one shape against
-/// many). The shapes' flat meshes are reused, and their spectra too when they have at least the
-/// eigenpairs the initialisation needs on the intrinsic Delaunay triangulation (prepare them with
-/// `number_of_eigenpairs(120)` for the defaults); otherwise the missing spectrum is computed.
+/// automatic_initial_maps() on two prepared shapes, to be refined with the same shapes. The
+/// shapes' flat meshes are reused, and their spectra too when they have exactly the eigenpairs
+/// the initialisation needs on the intrinsic Delaunay triangulation (prepare them with
+/// `number_of_eigenpairs(120)` for the defaults); otherwise the spectrum is computed. The
+/// initialisation's descriptors are recomputed on every call (they are not stored in the shape).
 /// The maps are then exactly those of the mesh-based overload with the same named parameters
 /// (`np`: the initialisation's parameters, as there), and can be passed to
 /// refine_coupled_maps() with the same shapes.
@@ -931,45 +955,12 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
                                                        std::vector<std::size_t>& map_21,
                                                        const NamedParameters& np = parameters::default_values())
 {
-  typedef std::chrono::steady_clock Clock;
-  const Clock::time_point start = Clock::now();
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   const internal::Initialization_settings s = internal::initialization_settings(np);
   internal::check_initialization_settings(s);
-  const int k = internal::initialization_number_of_eigenpairs(s);
-  std::unique_ptr<Laplace_beltrami_spectrum> own1, own2;
-  Eigen::MatrixXd d1, d2;
-  auto prepare = [&](const internal::Shape_data& data, std::unique_ptr<Laplace_beltrami_spectrum>& own,
-                     Eigen::MatrixXd& descriptors, const char* name) {
-    const internal::Indexed_mesh& m = data.mesh;
-    if(m.number_of_components != 1)
-      throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
-                               std::to_string(m.number_of_components) + " connected components");
-    if(m.number_of_vertices() <= s.zoomout_final_size || m.number_of_vertices() <= k)
-      throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
-                               std::to_string(m.number_of_vertices()) +
-                               " vertices, too few for a basis of " + std::to_string(k) +
-                               " eigenfunctions (reduce zoomout_final_size)");
-    const Laplace_beltrami_spectrum& given = *data.spectrum;
-    // The mesh-based overload computes exactly k eigenpairs: reuse only an identical spectrum.
-    if(given.number_of_eigenpairs() != k || !given.uses_intrinsic_delaunay())
-      own.reset(new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
-    descriptors = internal::initialization_descriptors<CGAL::Sequential_tag>(m, own ? *own : given, s);
-  };
-  auto prepare1 = [&] { prepare(shape_1.data(), own1, d1, "mesh 1"); };
-  auto prepare2 = [&] { prepare(shape_2.data(), own2, d2, "mesh 2"); };
-  internal::invoke_both<ConcurrencyTag>(prepare1, prepare2);
-  const double prepare_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  internal::Initialization_shape a, b;
-  a.mesh = &shape_1.data().mesh;
-  a.spectrum = own1 ? own1.get() : shape_1.data().spectrum.get();
-  a.descriptors = &d1;
-  b.mesh = &shape_2.data().mesh;
-  b.spectrum = own2 ? own2.get() : shape_2.data().spectrum.get();
-  b.descriptors = &d2;
-  Automatic_initialization_result r = internal::automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
-  r.spectra_seconds = prepare_seconds;
-  r.total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return r;
+  return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(
+      shape_1.data().mesh, shape_1.data().spectrum.get(), shape_2.data().mesh, shape_2.data().spectrum.get(), s,
+      map_12, map_21, start);
 }
 
 } // namespace Surface_mesh_correspondence

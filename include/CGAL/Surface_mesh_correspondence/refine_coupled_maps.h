@@ -444,31 +444,21 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
   {
     result.outer_iterations = t + 1;
     const int r = settings.rings(t);
-    // 1. solve for the map 1 -> 2 using the inverse of the current map 2 -> 1
-    std::vector<int> inverse12 = inverse_map(M1, M2, x21, x12);
-    Refinement_step s1 = solve_direction<ConcurrencyTag>(M1, M2, x12, inverse12, r, settings, 0, w12, visitor);
-    s1.outer_iteration = t;
-    s1.inconsistent_vertices = inconsistency(x12, x21);
-    result.steps.push_back(s1);
-    if(!visitor.step(s1))
-    {
-      stop = true;
+    // One MRF solve for the map a -> b, using the inverse of the current map b -> a; returns
+    // whether the visitor lets the refinement go on.
+    auto solve = [&](const Shape_data& A, const Shape_data& B, std::vector<int>& x_ab, const std::vector<int>& x_ba,
+                     int direction, Refinement_workspace& w) {
+      const std::vector<int> inverse = inverse_map(A, B, x_ba, x_ab);
+      Refinement_step step = solve_direction<ConcurrencyTag>(A, B, x_ab, inverse, r, settings, direction, w, visitor);
+      step.outer_iteration = t;
+      step.inconsistent_vertices = inconsistency(x12, x21);
+      result.steps.push_back(step);
+      if(visitor.step(step)) return true;
       result.termination = Refinement_termination::visitor_stop;
-    }
-    // 2. solve for the map 2 -> 1 using the inverse of the new map 1 -> 2
-    if(!stop)
-    {
-      std::vector<int> inverse21 = inverse_map(M2, M1, x12, x21);
-      Refinement_step s2 = solve_direction<ConcurrencyTag>(M2, M1, x21, inverse21, r, settings, 1, w21, visitor);
-      s2.outer_iteration = t;
-      s2.inconsistent_vertices = inconsistency(x12, x21);
-      result.steps.push_back(s2);
-      if(!visitor.step(s2))
-      {
-        stop = true;
-        result.termination = Refinement_termination::visitor_stop;
-      }
-    }
+      return false;
+    };
+    // 1. the map 1 -> 2, then 2. the map 2 -> 1 using the inverse of the new map 1 -> 2
+    stop = !solve(M1, M2, x12, x21, 0, w12) || !solve(M2, M1, x21, x12, 1, w21);
     // Eq. (4): continue while the summed cycle-consistency error does not increase.
     const std::size_t c = inconsistency(x12, x21);
     if(have_best && c > best_c)
