@@ -137,6 +137,8 @@ BOOST_AUTO_TEST_CASE(bad_options)
   expect_failure(match_args(p.a, p.b, " --coupling maybe"), 2, {"--coupling", "on or off"});
   expect_failure(match_args(p.a, p.b, " --oracle fast"), 2, {"--oracle", "auto, dense, local"});
   expect_failure(match_args(p.a, p.b, " --index-base 2"), 2, {"--index-base"});
+  expect_failure(match_args(p.a, p.b, " --init-select-by luck"), 2, {"--init-select-by", "distortion or descriptors"});
+  expect_failure(match_args(p.a, p.b, " --init-distortion-samples 1"), 2, {"--init-distortion-samples"});
   expect_failure(match_args(p.a, p.b, " --frobnicate"), 2, {"unknown option --frobnicate"});
   expect_failure(match_args(p.a, p.b, " --init-12 " + in_scratch("x.map")), 2, {"--init-21"});
   expect_failure("match " + p.a + " " + p.b + " --quiet", 2, {"--out-12"});

@@ -176,6 +176,68 @@ BOOST_AUTO_TEST_CASE(symmetric_shape_is_not_mirror_flipped)
   BOOST_TEST(r.orientation_sign == 1);
 }
 
+BOOST_AUTO_TEST_CASE(sample_geodesics_match_great_circles)
+{
+  // The distortion score's distances between farthest-point samples, on the unit sphere.
+  namespace smci = smc::internal;
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(icosphere(4));
+  const smci::Initialization_samples samples = smci::initialization_samples(m, 500, 40);
+  BOOST_TEST_REQUIRE(samples.distortion_vertices.size() == 40u);
+  BOOST_TEST_REQUIRE(samples.rows.size() == 500u);
+  for(std::size_t i = 0; i < 40; ++i)  // a subset of the ZoomOut samples, at the given rows
+    BOOST_TEST_REQUIRE(samples.rows[samples.distortion_rows[i]] == samples.distortion_vertices[i]);
+  smci::Fast_marching_geometry g;
+  g.build(m);
+  const Eigen::MatrixXd d = smci::pairwise_geodesic_distances(g, samples.distortion_vertices, 2.0);
+  double worst = 0;
+  for(int i = 0; i < 40; ++i)
+    for(int j = 0; j < 40; ++j)
+    {
+      const Eigen::Vector3d p = m.point(samples.distortion_vertices[i]).normalized();
+      const Eigen::Vector3d q = m.point(samples.distortion_vertices[j]).normalized();
+      const double exact = std::acos(std::max(-1.0, std::min(1.0, p.dot(q)))) / 2.0;
+      worst = std::max(worst, std::abs(d(i, j) - exact));
+    }
+  BOOST_TEST_MESSAGE("largest error of the sample distances on the sphere: " << worst);
+  BOOST_TEST(worst < 0.025);  // 1.6% of the largest distance, pi / 2 (fast marching on 2562 vertices)
+}
+
+BOOST_AUTO_TEST_CASE(distortion_ranks_a_swapped_limb_below_the_true_map)
+{
+  // The selection criterion of the fits: a map that sends one arm to the other (a partial flip,
+  // which descriptors cannot see on a symmetric shape) distorts geodesic distances far more than
+  // the true map; the full mirror map is an isometry and scores as well as the true one.
+  namespace smci = smc::internal;
+  const Pair_fixture& f = symmetric();
+  const std::vector<std::size_t> mirror1 = mirror_vertices(f.pair.m1);
+  std::vector<std::size_t> swapped(mirror1.size()), flipped(mirror1.size());
+  for(Vertex v : f.pair.m1.vertices())
+  {
+    flipped[v.idx()] = f.pair.gt_12[mirror1[v.idx()]];
+    const bool arm = std::abs(f.pair.m1.point(v).x()) > 0.9 && f.pair.m1.point(v).y() > 0.0;
+    swapped[v.idx()] = arm ? flipped[v.idx()] : f.pair.gt_12[v.idx()];
+  }
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
+  smci::Fast_marching_geometry g1, g2;
+  g1.build(m1);
+  g2.build(m2);
+  const smci::Initialization_samples samples = smci::initialization_samples(m1, 0, 100);
+  const double s1 = std::sqrt(m1.total_area), s2 = std::sqrt(m2.total_area);
+  const Eigen::MatrixXd d1 = smci::pairwise_geodesic_distances(g1, samples.distortion_vertices, s1);
+  auto distortion = [&](const std::vector<std::size_t>& map) {
+    std::vector<int> images;
+    for(int v : samples.distortion_vertices) images.push_back(int(map[v]));
+    return smci::map_distortion(d1, g2, images, s2);
+  };
+  const double e_true = distortion(f.pair.gt_12), e_swapped = distortion(swapped), e_flipped = distortion(flipped);
+  BOOST_TEST_MESSAGE("distortion: true map " << e_true << ", one arm swapped " << e_swapped << ", mirror "
+                                             << e_flipped);
+  BOOST_TEST(f.error_12(swapped, f.pair.gt_12) > 0.02);  // the swap is a real error
+  BOOST_TEST(e_swapped > 2 * e_true);
+  BOOST_TEST(e_flipped < 2 * e_true);
+  BOOST_TEST(e_true < 0.02);
+}
+
 BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)
 {
   // Landmarks that say "the mirror map": the answer must follow them on the symmetric shape.
@@ -209,9 +271,11 @@ BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)
   const double without = f.error_12(a12, flip_12), with = f.error_12(m12, flip_12);
   BOOST_TEST_MESSAGE("error against the mirror map: " << without << " without landmarks, " << with << " with "
                      "mirror landmarks (" << f.error_21(m21, flip_21) << " in the other direction)");
-  // Known limitation (doc/automatic_initialization.md): landmarks that contradict the orientation
-  // are followed near the landmarks, not necessarily everywhere.
-  BOOST_TEST(with < 0.8 * without);
+  // Landmarks that contradict the orientation select the mirror map everywhere: the fits of the
+  // wrong orientation must tear the shape to reach the landmarks, which the distortion score sees.
+  BOOST_TEST(without > 0.2);
+  BOOST_TEST(with < 0.02);
+  BOOST_TEST(f.error_21(m21, flip_21) < 0.02);
   for(const auto& l : landmarks)
     BOOST_TEST(f.on2.geodesic_errors(m12, {l.first}, {l.second}).mean < 0.05);
   // Landmarks that agree with the true map keep it.

@@ -149,7 +149,7 @@ void write_initialization(Json_writer& json, const std::string& key, const smc::
       .value("functional_map_seconds", r.functional_map_seconds)
       .value("zoomout_seconds", r.zoomout_seconds)
       .value("total_seconds", r.total_seconds)
-      .value("descriptor_residual", r.descriptor_residual)
+      .value("selection_score", r.selection_score)
       .value("orientation_sign", r.orientation_sign)
       .value("cycle_error", r.cycle_error)
       .value("cycle_fixed_fraction", r.cycle_fixed_fraction)

@@ -140,6 +140,16 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           fits_text(di.candidates), [&in](const std::string& v) { in.candidates = parse_fits("--init-fits", v); });
   p.value("--init-selection-size", "K", "basis size at which the fits are compared", std::to_string(di.selection_size),
           [&in](const std::string& v) { in.selection_size = parse_int("--init-selection-size", v, 2, 100000); });
+  p.value("--init-select-by", "distortion|descriptors",
+          "how the fits are compared: geodesic distortion of the sample maps, or descriptor distance",
+          di.select_by_distortion ? "distortion" : "descriptors", [&in](const std::string& v) {
+            if(v != "distortion" && v != "descriptors")
+              throw Usage_error("bad value for --init-select-by: \"" + v + "\" (expected distortion or descriptors)");
+            in.select_by_distortion = v == "distortion";
+          });
+  p.value("--init-distortion-samples", "N", "samples whose pairwise geodesic distances score the fits",
+          std::to_string(di.distortion_samples),
+          [&in](const std::string& v) { in.distortion_samples = parse_int("--init-distortion-samples", v, 2, 100000); });
   p.value("--init-basis", "K", "final ZoomOut basis size (the shapes need more vertices than this)",
           std::to_string(di.zoomout_final_size),
           [&in](const std::string& v) { in.zoomout_final_size = parse_int("--init-basis", v, 2, 100000); });

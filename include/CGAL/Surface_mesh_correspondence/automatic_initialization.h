@@ -14,6 +14,7 @@
 #include <CGAL/Surface_mesh_correspondence/heat_kernel_signature.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/dijkstra.h>
+#include <CGAL/Surface_mesh_correspondence/internal/fast_marching.h>
 #include <CGAL/Surface_mesh_correspondence/internal/orientation_operator.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 #include <CGAL/Surface_mesh_correspondence/internal/vertex_normals.h>
@@ -57,9 +58,11 @@ struct Automatic_initialization_result
   double zoomout_seconds = 0;
   /// Total seconds.
   double total_seconds = 0;
-  /// The selection score of the chosen fits (weighted descriptor distance between matched sample
-  /// vertices after the short ZoomOut), averaged over both directions.
-  double descriptor_residual = 0;
+  /// The selection score of the chosen fits after the short ZoomOut, averaged over both
+  /// directions: the mean geodesic distortion of the sample maps (distances divided by the square
+  /// root of the area), or with select_by_distortion off the weighted descriptor distance between
+  /// matched samples.
+  double selection_score = 0;
   /// Orientation of the maps: +1 preserving, -1 reversing (chosen from landmarks or the meshes'
   /// orientations, see automatic_initial_maps()).
   int orientation_sign = 1;
@@ -96,8 +99,15 @@ struct Initialization_settings
   /// The fit configurations tried (each in both directions); the best after a short ZoomOut is
   /// kept. The named parameters spectral_basis_size, orientation_weight and commutativity_weight
   /// replace the list by a single configuration.
-  std::vector<Fit_candidate> candidates{{20, 0.03, 0.3}, {20, 0.1, 1.0}, {30, 0.03, 0.3}, {30, 0.1, 1.0}};
+  /// Candidates larger than zoomout_final_size are skipped.
+  std::vector<Fit_candidate> candidates{{20, 0.03, 0.3}, {15, 0.03, 0.3}, {20, 0.1, 1.0},
+                                        {30, 0.03, 0.3}, {40, 0.1, 1.0},  {60, 0.1, 1.0}};
   int selection_size = 40;               ///< basis size at which candidates are compared
+  /// How candidates are compared: by the geodesic distortion of their sample maps (true) or by
+  /// the weighted descriptor distance between matched samples (false).
+  bool select_by_distortion = true;
+  /// Farthest-point samples whose pairwise geodesic distances measure the distortion.
+  int distortion_samples = 100;
   int zoomout_final_size = 120;          ///< k_final
   int zoomout_step = 5;                  ///< ZoomOut basis growth per iteration
   int number_of_eigenpairs = 0;          ///< eigenpairs computed (0: zoomout_final_size)
@@ -179,11 +189,12 @@ Initialization_settings initialization_settings(const NamedParameters& np)
   return s;
 }
 
-/// The largest candidate basis size.
+/// The largest candidate basis size that is tried (candidates above zoomout_final_size are skipped).
 inline int largest_candidate_size(const Initialization_settings& s)
 {
   int k = 0;
-  for(const Fit_candidate& c : s.candidates) k = std::max(k, c.basis_size);
+  for(const Fit_candidate& c : s.candidates)
+    if(c.basis_size <= s.zoomout_final_size) k = std::max(k, c.basis_size);
   return k;
 }
 
@@ -198,13 +209,19 @@ inline void check_initialization_settings(const Initialization_settings& s)
   {
     if(c.basis_size < 2)
       fail("spectral_basis_size = " + std::to_string(c.basis_size) + " must be at least 2");
-    if(s.zoomout_final_size < c.basis_size)
-      fail("zoomout_final_size = " + std::to_string(s.zoomout_final_size) +
-           " must be at least spectral_basis_size = " + std::to_string(c.basis_size));
     if(!(c.orientation_weight >= 0) || !(c.commutativity_weight >= 0) || !std::isfinite(c.orientation_weight) ||
        !std::isfinite(c.commutativity_weight))
       fail("orientation_weight and commutativity_weight must be finite and non-negative");
   }
+  if(largest_candidate_size(s) == 0)
+  {
+    int smallest = s.candidates.front().basis_size;
+    for(const Fit_candidate& c : s.candidates) smallest = std::min(smallest, c.basis_size);
+    fail("zoomout_final_size = " + std::to_string(s.zoomout_final_size) +
+         " must be at least spectral_basis_size = " + std::to_string(smallest));
+  }
+  if(s.select_by_distortion && s.distortion_samples < 2)
+    fail("distortion_samples = " + std::to_string(s.distortion_samples) + " must be at least 2");
   if(s.zoomout_step < 1) fail("zoomout_step = " + std::to_string(s.zoomout_step) + " must be positive");
   if(s.number_of_eigenpairs != 0 && s.number_of_eigenpairs < s.zoomout_final_size)
     fail("number_of_eigenpairs = " + std::to_string(s.number_of_eigenpairs) +
@@ -452,17 +469,69 @@ inline double orientation_agreement(const Indexed_mesh& source, const Indexed_me
 }
 
 /// Farthest point samples (edge-graph distances) of the whole mesh, starting from vertex 0.
-inline std::vector<int> zoomout_samples(const Indexed_mesh& m, int count)
+inline std::vector<int> farthest_samples(const Indexed_mesh& m, int count)
 {
   std::vector<int> samples;
-  if(count <= 0 || count >= m.number_of_vertices()) return samples;
   Edge_length_graph graph(m);
   Farthest_point_sampler sampler(graph);
   std::vector<int> all(m.number_of_vertices());
   for(int v = 0; v < m.number_of_vertices(); ++v) all[v] = v;
   sampler.sample(all.data(), all.size(), nullptr, 0, count, samples);
-  std::sort(samples.begin(), samples.end());
   return samples;
+}
+
+/// The ZoomOut samples of one mesh (sorted; empty: every vertex) and the `distortion_count`
+/// samples of the distortion score (the first farthest-point samples, so a subset of the ZoomOut
+/// samples), as vertices and as positions in the ZoomOut rows.
+struct Initialization_samples
+{
+  std::vector<int> rows;
+  std::vector<int> distortion_vertices, distortion_rows;
+};
+
+inline Initialization_samples initialization_samples(const Indexed_mesh& m, int count, int distortion_count)
+{
+  Initialization_samples out;
+  const int n = m.number_of_vertices();
+  const bool all_rows = count <= 0 || count >= n;
+  const int q = std::min(distortion_count, n);
+  std::vector<int> fps = farthest_samples(m, all_rows ? std::max(q, 1) : std::max(count, q));
+  out.distortion_vertices.assign(fps.begin(), fps.begin() + std::max(q, 0));
+  if(!all_rows)
+  {
+    out.rows = fps;
+    std::sort(out.rows.begin(), out.rows.end());
+  }
+  for(int v : out.distortion_vertices)
+    out.distortion_rows.push_back(all_rows ? v : int(std::lower_bound(out.rows.begin(), out.rows.end(), v) -
+                                                     out.rows.begin()));
+  return out;
+}
+
+/// Geodesic distances (fast marching) between the given vertices, divided by `scale`.
+inline Eigen::MatrixXd pairwise_geodesic_distances(const Fast_marching_geometry& g, const std::vector<int>& vertices,
+                                                   double scale)
+{
+  const Eigen::Index q = Eigen::Index(vertices.size());
+  Eigen::MatrixXd d(q, q);
+  Fast_marching_workspace w(g);
+  for(Eigen::Index i = 0; i < q; ++i)
+  {
+    w.run(&vertices[i], 1, std::numeric_limits<double>::infinity(), vertices.data(), vertices.size());
+    for(Eigen::Index j = 0; j < q; ++j) d(i, j) = w.distance(vertices[j]) / scale;
+  }
+  return d;
+}
+
+/// Mean geodesic distortion of a map on samples: the mean over pairs (i, j) of
+/// |d_S(s_i, s_j) - d_T(T(s_i), T(s_j))|, distances divided by the square roots of the areas.
+/// `source_distances` are the source's (pairwise_geodesic_distances()), `images` the T(s_i).
+inline double map_distortion(const Eigen::MatrixXd& source_distances, const Fast_marching_geometry& target,
+                             const std::vector<int>& images, double target_scale)
+{
+  const Eigen::MatrixXd d = pairwise_geodesic_distances(target, images, target_scale);
+  const Eigen::Index q = d.rows();
+  return q < 2 ? 0.0 : (d - source_distances).cwiseAbs().sum() / double(q * (q - 1));
 }
 
 /// Checks one shape against the settings.
@@ -624,9 +693,21 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
       });
 
   // Samples for the ZoomOut iterations and the ZoomOut features (weighted descriptors).
-  std::vector<int> rows1, rows2;
-  invoke_both<ConcurrencyTag>([&] { rows1 = zoomout_samples(m1, s.zoomout_number_of_samples); },
-                              [&] { rows2 = zoomout_samples(m2, s.zoomout_number_of_samples); });
+  Initialization_samples samples1, samples2;
+  Fast_marching_geometry geodesics1, geodesics2;
+  Eigen::MatrixXd sample_distances1, sample_distances2;
+  const int distortion_count = s.select_by_distortion ? s.distortion_samples : 0;
+  auto prepare_samples = [&](const Indexed_mesh& m, double area, Initialization_samples& samples,
+                             Fast_marching_geometry& g, Eigen::MatrixXd& distances) {
+    samples = initialization_samples(m, s.zoomout_number_of_samples, distortion_count);
+    if(distortion_count <= 0) return;
+    g.build(m);
+    distances = pairwise_geodesic_distances(g, samples.distortion_vertices, std::sqrt(area));
+  };
+  invoke_both<ConcurrencyTag>([&] { prepare_samples(m1, A1, samples1, geodesics1, sample_distances1); },
+                              [&] { prepare_samples(m2, A2, samples2, geodesics2, sample_distances2); });
+  const std::vector<int>& rows1 = samples1.rows;
+  const std::vector<int>& rows2 = samples2.rows;
   Eigen::MatrixXd features1, features2;
   Zoomout_features features12, features21;
   // Feature weights: sqrt(w_c / sum w) times the ZoomOut descriptor weight, for all columns or the
@@ -667,22 +748,54 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
   {
     Fit_candidate config;
     int sign;
+    int inverse_of;               // -1: a fit; else the index of the fit whose maps it inverts
     Eigen::MatrixXd C12, C21;     // after the short ZoomOut
     double score12 = 0, score21 = 0;
+    double signed12 = 0, signed21 = 0;  // residual of the orientation-sensitive descriptors
   };
   std::vector<Candidate> candidates;
   const std::vector<int> signs = landmarks.empty() ? std::vector<int>{1} : std::vector<int>{1, -1};
   for(int sign : signs)
-    for(const Fit_candidate& c : s.candidates) candidates.push_back({c, sign, {}, {}});
+    for(const Fit_candidate& c : s.candidates)
+      if(c.basis_size <= kf) candidates.push_back({c, sign, -1, {}, {}});
   const int k_select = std::min(std::max(s.selection_size, kmax), kf);
   Zoomout_settings select_settings = zs;
   select_settings.final_size = k_select;
+  Eigen::VectorXd signed_weights = Eigen::VectorXd::Zero(column_weights.size());
+  signed_weights.segment(signed_begin, signed_count).setOnes();
   auto score = [&](const Eigen::MatrixXd& Da, const Eigen::MatrixXd& Db, const std::vector<int>& rows,
-                   const std::vector<int>& map_rows) {
+                   const std::vector<int>& map_rows, const Eigen::VectorXd& weights) {
     double total = 0;
-    for(std::size_t r = 0; r < rows.size(); ++r)
-      total += (Da.row(rows.empty() ? int(r) : rows[r]) - Db.row(map_rows[r])).cwiseAbs2().dot(column_weights);
-    return total / (double(map_rows.size()) * column_weights.sum());
+    for(std::size_t r = 0; r < map_rows.size(); ++r)
+      total += (Da.row(rows.empty() ? int(r) : rows[r]) - Db.row(map_rows[r])).cwiseAbs2().dot(weights);
+    return weights.sum() > 0 ? total / (double(map_rows.size()) * weights.sum()) : 0.0;
+  };
+  // Short ZoomOut of both maps on the samples, then the scores of the sample matches.
+  auto zoom_and_score = [&](Candidate& c, const Eigen::MatrixXd& C12, const Eigen::MatrixXd& C21) {
+    std::vector<int> t12, t21;
+    c.C12 = zoomout_refine<CGAL::Sequential_tag>(basis1, mass1, basis2, C12, select_settings, rows1, landmarks,
+                                                 t12, Zoomout_features(), true);
+    c.C21 = zoomout_refine<CGAL::Sequential_tag>(basis2, mass2, basis1, C21, select_settings, rows2, landmarks21,
+                                                 t21, Zoomout_features(), true);
+    if(s.select_by_distortion)
+    {
+      auto images = [](const Initialization_samples& samples, const std::vector<int>& t) {
+        std::vector<int> out;
+        for(int r : samples.distortion_rows) out.push_back(t[r]);
+        return out;
+      };
+      c.score12 = map_distortion(sample_distances1, geodesics2, images(samples1, t12), std::sqrt(A2));
+      c.score21 = map_distortion(sample_distances2, geodesics1, images(samples2, t21), std::sqrt(A1));
+    }
+    Eigen::MatrixXd F2 = D2;
+    if(c.sign < 0) F2.middleCols(signed_begin, signed_count) *= -1.0;
+    c.signed12 = score(D1, F2, rows1, t12, signed_weights);
+    c.signed21 = score(F2, D1, rows2, t21, signed_weights);
+    if(!s.select_by_distortion)
+    {
+      c.score12 = score(D1, F2, rows1, t12, column_weights);
+      c.score21 = score(F2, D1, rows2, t21, column_weights);
+    }
   };
   auto run_candidate = [&](Candidate& c) {
     Functional_map_shape_terms a = leading_terms(T1, c.config.basis_size);
@@ -692,31 +805,34 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
     w.orientation = c.config.orientation_weight;
     w.commutativity = c.config.commutativity_weight;
     w.orientation_sign = orientation_sign * c.sign;
-    Functional_map_shape_terms b2 = b;
     if(c.sign < 0)
     {
       // The mirror hypothesis: the signed descriptors of mesh 2 change sign.
-      b2.descriptor_coefficients.middleCols(signed_begin, signed_count) *= -1.0;
+      b.descriptor_coefficients.middleCols(signed_begin, signed_count) *= -1.0;
     }
-    Eigen::MatrixXd C12 = minimize_functional_map_energy(a, b2, w, column_weights);
-    Eigen::MatrixXd C21 = minimize_functional_map_energy(b2, a, w, column_weights);
+    Eigen::MatrixXd C12 = minimize_functional_map_energy(a, b, w, column_weights);
+    Eigen::MatrixXd C21 = minimize_functional_map_energy(b, a, w, column_weights);
     if(s.procrustes)
     {
       C12 = nearest_orthogonal(C12);
       C21 = nearest_orthogonal(C21);
     }
-    Eigen::MatrixXd F2 = D2;
-    if(c.sign < 0) F2.middleCols(signed_begin, signed_count) *= -1.0;
-    // Short ZoomOut on the samples, then the score of the sample matches.
-    std::vector<int> t12, t21;
-    c.C12 = zoomout_refine<CGAL::Sequential_tag>(basis1, mass1, basis2, C12, select_settings, rows1, landmarks,
-                                                 t12, Zoomout_features(), true);
-    c.C21 = zoomout_refine<CGAL::Sequential_tag>(basis2, mass2, basis1, C21, select_settings, rows2, landmarks21,
-                                                 t21, Zoomout_features(), true);
-    c.score12 = score(D1, F2, rows1, t12);
-    c.score21 = score(F2, D1, rows2, t21);
+    zoom_and_score(c, C12, C21);
   };
   parallel_for<ConcurrencyTag>(candidates.size(), [&](std::size_t i) { run_candidate(candidates[i]); });
+  if(s.select_by_distortion)
+  {
+    // The inverses of the fitted maps (C_21^T for 1 -> 2 and C_12^T for 2 -> 1, the maps being
+    // nearly orthogonal) are candidates too: one direction often finds the right map when the
+    // other does not.
+    const std::size_t fits = candidates.size();
+    for(std::size_t i = 0; i < fits; ++i)
+      candidates.push_back({candidates[i].config, candidates[i].sign, int(i), {}, {}});
+    parallel_for<ConcurrencyTag>(fits, [&](std::size_t i) {
+      Candidate& c = candidates[fits + i];
+      zoom_and_score(c, candidates[i].C21.transpose(), candidates[i].C12.transpose());
+    });
+  }
   std::size_t best12 = 0, best21 = 0;
   for(std::size_t i = 1; i < candidates.size(); ++i)
   {
@@ -752,13 +868,14 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
     for(std::size_t i = 0; i < candidates.size(); ++i)
       std::cerr << "  candidate " << i << ": k0 " << candidates[i].config.basis_size << ", w_o "
                 << candidates[i].config.orientation_weight << ", w_c " << candidates[i].config.commutativity_weight
-                << ", sign " << candidates[i].sign << ": scores " << candidates[i].score12 << " "
-                << candidates[i].score21 << "\n";
+                << ", sign " << candidates[i].sign
+                << (candidates[i].inverse_of >= 0 ? " (inverse maps)" : "") << ": scores " << candidates[i].score12 << " "
+                << candidates[i].score21 << ", signed " << candidates[i].signed12 << " " << candidates[i].signed21 << "\n";
   const int sign = candidates[best12].sign;
   result.orientation_sign = orientation_sign * sign;
   result.initial_basis_size = candidates[best12].config.basis_size;
   Eigen::MatrixXd C12 = candidates[best12].C12, C21 = candidates[best21].C21;
-  result.descriptor_residual = 0.5 * (candidates[best12].score12 + candidates[best21].score21);
+  result.selection_score = 0.5 * (candidates[best12].score12 + candidates[best21].score21);
   if(sign < 0)
   {
     D2.middleCols(signed_begin, signed_count) *= -1.0;
@@ -897,10 +1014,13 @@ Automatic_initialization_result automatic_initial_maps_of_meshes(
 /// \param map_21 output: the same from `tm2` to `tm1`
 /// \param np optional named parameters among:
 ///   - `spectral_basis_size`: \f$ k_0 \f$, the size of the fitted functional maps; type `int`.
-///     By default four fits are tried ((k_0, w_o, w_c) = (20, 0.03, 0.3), (20, 0.1, 1), (30, 0.03,
-///     0.3), (30, 0.1, 1)) and the one of lowest descriptor distance after a short ZoomOut is
-///     kept; giving `spectral_basis_size`, `orientation_weight` or `commutativity_weight` fits a
-///     single configuration, the values not given taken from the first one.
+///     By default six fits are tried ((k_0, w_o, w_c) = (20, 0.03, 0.3), (15, 0.03, 0.3), (20,
+///     0.1, 1), (30, 0.03, 0.3), (40, 0.1, 1), (60, 0.1, 1); those larger than `zoomout_final_size`
+///     are skipped), together with the inverses of the fitted maps, and in each direction the one
+///     whose map after a short ZoomOut distorts geodesic distances least (between 100
+///     farthest-point samples) is kept; giving `spectral_basis_size`, `orientation_weight` or
+///     `commutativity_weight` fits a single configuration, the values not given taken from the
+///     first one.
 ///   - `zoomout_final_size`: \f$ k_f \f$, the basis size after ZoomOut; type `int`; default 120.
 ///   - `zoomout_step`: the basis growth per ZoomOut iteration; type `int`; default 5.
 ///   - `number_of_eigenpairs`: eigenpairs computed, at least \f$ k_f \f$; type `int`; default
