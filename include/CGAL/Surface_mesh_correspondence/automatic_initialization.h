@@ -751,7 +751,6 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
     int inverse_of;               // -1: a fit; else the index of the fit whose maps it inverts
     Eigen::MatrixXd C12, C21;     // after the short ZoomOut
     double score12 = 0, score21 = 0;
-    double signed12 = 0, signed21 = 0;  // residual of the orientation-sensitive descriptors
   };
   std::vector<Candidate> candidates;
   const std::vector<int> signs = landmarks.empty() ? std::vector<int>{1} : std::vector<int>{1, -1};
@@ -761,14 +760,12 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
   const int k_select = std::min(std::max(s.selection_size, kmax), kf);
   Zoomout_settings select_settings = zs;
   select_settings.final_size = k_select;
-  Eigen::VectorXd signed_weights = Eigen::VectorXd::Zero(column_weights.size());
-  signed_weights.segment(signed_begin, signed_count).setOnes();
   auto score = [&](const Eigen::MatrixXd& Da, const Eigen::MatrixXd& Db, const std::vector<int>& rows,
-                   const std::vector<int>& map_rows, const Eigen::VectorXd& weights) {
+                   const std::vector<int>& map_rows) {
     double total = 0;
     for(std::size_t r = 0; r < map_rows.size(); ++r)
-      total += (Da.row(rows.empty() ? int(r) : rows[r]) - Db.row(map_rows[r])).cwiseAbs2().dot(weights);
-    return weights.sum() > 0 ? total / (double(map_rows.size()) * weights.sum()) : 0.0;
+      total += (Da.row(rows.empty() ? int(r) : rows[r]) - Db.row(map_rows[r])).cwiseAbs2().dot(column_weights);
+    return total / (double(map_rows.size()) * column_weights.sum());
   };
   // Short ZoomOut of both maps on the samples, then the scores of the sample matches.
   auto zoom_and_score = [&](Candidate& c, const Eigen::MatrixXd& C12, const Eigen::MatrixXd& C21) {
@@ -787,14 +784,12 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
       c.score12 = map_distortion(sample_distances1, geodesics2, images(samples1, t12), std::sqrt(A2));
       c.score21 = map_distortion(sample_distances2, geodesics1, images(samples2, t21), std::sqrt(A1));
     }
-    Eigen::MatrixXd F2 = D2;
-    if(c.sign < 0) F2.middleCols(signed_begin, signed_count) *= -1.0;
-    c.signed12 = score(D1, F2, rows1, t12, signed_weights);
-    c.signed21 = score(F2, D1, rows2, t21, signed_weights);
-    if(!s.select_by_distortion)
+    else
     {
-      c.score12 = score(D1, F2, rows1, t12, column_weights);
-      c.score21 = score(F2, D1, rows2, t21, column_weights);
+      Eigen::MatrixXd F2 = D2;
+      if(c.sign < 0) F2.middleCols(signed_begin, signed_count) *= -1.0;
+      c.score12 = score(D1, F2, rows1, t12);
+      c.score21 = score(F2, D1, rows2, t21);
     }
   };
   auto run_candidate = [&](Candidate& c) {
@@ -870,7 +865,7 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
                 << candidates[i].config.orientation_weight << ", w_c " << candidates[i].config.commutativity_weight
                 << ", sign " << candidates[i].sign
                 << (candidates[i].inverse_of >= 0 ? " (inverse maps)" : "") << ": scores " << candidates[i].score12 << " "
-                << candidates[i].score21 << ", signed " << candidates[i].signed12 << " " << candidates[i].signed21 << "\n";
+                << candidates[i].score21 << "\n";
   const int sign = candidates[best12].sign;
   result.orientation_sign = orientation_sign * sign;
   result.initial_basis_size = candidates[best12].config.basis_size;
