@@ -495,7 +495,8 @@ inline Initialization_samples initialization_samples(const Indexed_mesh& m, int 
   const int n = m.number_of_vertices();
   const bool all_rows = count <= 0 || count >= n;
   const int q = std::min(distortion_count, n);
-  std::vector<int> fps = farthest_samples(m, all_rows ? std::max(q, 1) : std::max(count, q));
+  if(all_rows && q <= 0) return out;  // nothing to sample
+  std::vector<int> fps = farthest_samples(m, all_rows ? q : std::max(count, q));
   out.distortion_vertices.assign(fps.begin(), fps.begin() + std::max(q, 0));
   if(!all_rows)
   {
