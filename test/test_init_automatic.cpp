@@ -238,6 +238,114 @@ BOOST_AUTO_TEST_CASE(distortion_ranks_a_swapped_limb_below_the_true_map)
   BOOST_TEST(e_true < 0.02);
 }
 
+namespace {
+
+/// Maps of the symmetric pair whose arms (|x| > 0.9, y > 0 on mesh 1) are swapped: each arm is
+/// sent where the mirrored ground truth sends it, the rest where the ground truth does.
+struct Swapped_arms
+{
+  std::vector<std::size_t> map_12, map_21;
+  std::vector<char> arm1;  ///< the swapped vertices of mesh 1
+};
+
+Swapped_arms swapped_arms(const Pair_fixture& f)
+{
+  const std::vector<std::size_t> mirror1 = mirror_vertices(f.pair.m1);
+  Swapped_arms s;
+  s.arm1.resize(mirror1.size());
+  for(Vertex v : f.pair.m1.vertices())
+    s.arm1[v.idx()] = std::abs(f.pair.m1.point(v).x()) > 0.9 && f.pair.m1.point(v).y() > 0.0;
+  s.map_12.resize(mirror1.size());
+  for(std::size_t v = 0; v < mirror1.size(); ++v) s.map_12[v] = f.pair.gt_12[s.arm1[v] ? mirror1[v] : v];
+  s.map_21.resize(num_vertices(f.pair.m2));
+  for(std::size_t w = 0; w < s.map_21.size(); ++w)
+  {
+    const std::size_t v = f.pair.gt_21[w];
+    s.map_21[w] = s.arm1[v] ? mirror1[v] : v;
+  }
+  return s;
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(tears_cut_off_swapped_limbs)
+{
+  namespace smci = smc::internal;
+  const Pair_fixture& f = symmetric();
+  const Swapped_arms s = swapped_arms(f);
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
+  const double threshold = smci::tear_threshold(m2, 0.06);
+  BOOST_TEST(threshold >= 0.06 * std::sqrt(m2.total_area));
+  // The true map is continuous: no region is cut off.
+  const smci::Map_tears true_tears =
+      smci::map_tears(m1, m2, std::vector<int>(f.pair.gt_12.begin(), f.pair.gt_12.end()), threshold);
+  BOOST_TEST(true_tears.torn_fraction < 0.005);
+  // The swapped arms are cut off at the shoulders: the core holds no arm vertex, and every region
+  // that holds one is another region.
+  const std::vector<int> swapped(s.map_12.begin(), s.map_12.end());
+  const smci::Map_tears tears = smci::map_tears(m1, m2, swapped, threshold);
+  BOOST_TEST_MESSAGE("swapped arms: " << tears.torn_edges << " torn edges, " << tears.region_area.size()
+                                      << " regions, torn fraction " << tears.torn_fraction);
+  BOOST_TEST(tears.torn_edges > 10u);
+  BOOST_TEST(tears.torn_fraction > 0.03);
+  std::size_t arm_vertices_in_core = 0, arm_vertices_in_regions = 0;
+  for(std::size_t v = 0; v < s.arm1.size(); ++v)
+    if(s.arm1[v] && tears.region[v] >= 0)
+    {
+      ++arm_vertices_in_regions;
+      arm_vertices_in_core += tears.region[v] == tears.core;
+    }
+  BOOST_TEST(arm_vertices_in_regions > 10u);
+  BOOST_TEST(tears.region_area.size() >= 3u);  // the core and one region per arm
+  BOOST_TEST(arm_vertices_in_core == 0u);
+  // Landmarks for the repair come from the core only, with their images under the map.
+  const std::vector<std::pair<int, int> > core = smci::core_correspondences(m1, tears, swapped, 25);
+  BOOST_TEST(core.size() == 25u);
+  for(const auto& c : core)
+  {
+    BOOST_TEST(tears.region[c.first] == tears.core);
+    BOOST_TEST(c.second == swapped[c.first]);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(tear_repair_restores_swapped_limbs)
+{
+  // Maps with both arms swapped (what functional maps produce on some humans and animals of the
+  // benchmarks) are recomputed from landmarks in their core: the arms go back to their place.
+  const Pair_fixture& f = symmetric();
+  const Swapped_arms s = swapped_arms(f);
+  std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21;
+  const smc::Automatic_initialization_result r = smc::repair_torn_maps(f.pair.m1, f.pair.m2, r12, r21);
+  const double before = f.error_12(s.map_12, f.pair.gt_12), after = f.error_12(r12, f.pair.gt_12);
+  BOOST_TEST_MESSAGE("swapped arms: error " << before << " -> " << after << " (" << f.error_21(s.map_21, f.pair.gt_21)
+                                            << " -> " << f.error_21(r21, f.pair.gt_21) << "), torn fraction "
+                                            << r.torn_fraction_before << " -> " << r.torn_fraction << " in "
+                                            << r.repair_passes << " pass(es)");
+  BOOST_TEST(before > 0.03);
+  BOOST_TEST(after < 0.015);
+  BOOST_TEST(f.error_21(r21, f.pair.gt_21) < 0.015);
+  BOOST_TEST(r.repair_passes >= 1);
+  BOOST_TEST(r.torn_fraction < r.torn_fraction_before);
+  // Maps without tears are left alone.
+  std::vector<std::size_t> t12 = f.pair.gt_12, t21 = f.pair.gt_21;
+  const smc::Automatic_initialization_result t = smc::repair_torn_maps(f.pair.m1, f.pair.m2, t12, t21);
+  BOOST_TEST(t.repair_passes == 0);
+  BOOST_TEST(t.torn_fraction_before < 0.005);
+  BOOST_TEST(t12 == f.pair.gt_12);
+  BOOST_TEST(t21 == f.pair.gt_21);
+  // With the repair off, the automatic maps are the first pass's.
+  std::vector<std::size_t> a12, a21;
+  const smc::Automatic_initialization_result a = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, a12, a21, params::number_of_repair_passes(0));
+  BOOST_TEST(a.repair_passes == 0);
+  // Maps that do not fit the meshes are rejected.
+  std::vector<std::size_t> short12(s.map_12.begin(), s.map_12.end() - 1), bad21 = s.map_21;
+  BOOST_CHECK_THROW(smc::repair_torn_maps(f.pair.m1, f.pair.m2, short12, bad21), smc::Invalid_map_error);
+  bad21[3] = num_vertices(f.pair.m1);
+  std::vector<std::size_t> ok12 = s.map_12;
+  BOOST_CHECK_THROW(smc::repair_torn_maps(f.pair.m1, f.pair.m2, ok12, bad21), smc::Invalid_map_error);
+}
+
 BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)
 {
   // Landmarks that say "the mirror map": the answer must follow them on the symmetric shape.

@@ -15,9 +15,11 @@
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/dijkstra.h>
 #include <CGAL/Surface_mesh_correspondence/internal/fast_marching.h>
+#include <CGAL/Surface_mesh_correspondence/internal/map_tears.h>
 #include <CGAL/Surface_mesh_correspondence/internal/orientation_operator.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 #include <CGAL/Surface_mesh_correspondence/internal/vertex_normals.h>
+#include <CGAL/Surface_mesh_correspondence/map_io.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
 #include <CGAL/Surface_mesh_correspondence/wave_kernel_signature.h>
@@ -77,6 +79,11 @@ struct Automatic_initialization_result
   double orientation_agreement = 0;
   /// Basis sizes: of the initial functional maps and after ZoomOut.
   int initial_basis_size = 0, final_basis_size = 0;
+  /// Tear repair (see automatic_initial_maps()): the passes whose maps were kept (0: the first
+  /// maps were kept), and the torn fraction (area cut off from the core by tears, mean of both
+  /// directions) of the first maps and of the returned ones.
+  int repair_passes = 0;
+  double torn_fraction_before = 0, torn_fraction = 0;
   /// The final functional maps (unit-area bases): C12 (k x k, pulls functions from mesh 2 back
   /// to mesh 1, the map of map_12) and C21.
   Eigen::MatrixXd functional_map_12, functional_map_21;
@@ -143,6 +150,23 @@ struct Initialization_settings
   double landmark_descriptor_weight = 50.0;
   int number_of_landmark_energies = 10;
   double zoomout_landmark_weight = 0.01;
+  /// With landmarks, the orientations fitted: 0 both (the landmarks choose), +1 or -1 only that
+  /// hypothesis (relative to the meshes' own orientations).
+  int landmark_orientation = 0;
+  // Tear repair.
+  /// Repair passes at most: after each set of maps whose tears cut off more than
+  /// tear_min_fraction of a mesh, the maps are recomputed with landmarks sampled in the core (the
+  /// largest region between the tears) of both maps, and kept when they are less torn.
+  int tear_repair_passes = 2;
+  /// A source edge is torn when its images are at least this far apart (relative to the square
+  /// root of the target's area; at least four mean edge lengths).
+  double tear_threshold = 0.06;
+  double tear_min_fraction = 0.01;
+  /// Landmarks sampled in the core of each map by a repair pass.
+  int tear_repair_landmarks = 30;
+  /// The fit configurations of the repair passes (the landmarks constrain the fits, so fewer are
+  /// needed); empty: those of the first pass.
+  std::vector<Fit_candidate> repair_candidates{{20, 0.03, 0.3}, {40, 0.1, 1.0}};
   bool verbose = false;
 };
 
@@ -178,6 +202,9 @@ Initialization_settings initialization_settings(const NamedParameters& np)
                                               c.commutativity_weight);
     s.candidates.assign(1, c);
   }
+  s.tear_repair_passes = choose_parameter(get_parameter(np, internal_np::number_of_repair_passes),
+                                          s.tear_repair_passes);
+  s.tear_threshold = choose_parameter(get_parameter(np, internal_np::tear_threshold), s.tear_threshold);
   s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
   const auto& landmarks = get_parameter(np, internal_np::landmarks);
   if constexpr(!std::is_same<typename std::decay<decltype(landmarks)>::type,
@@ -233,6 +260,11 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.hks_weight > 0 && s.number_of_hks_scales < 1) fail("number_of_hks_scales must be positive");
   if(!(s.signed_descriptor_weight >= 0)) fail("the signed descriptor weight must be non-negative");
   if(!(s.weights.laplacian >= 0) || !(s.weights.descriptor > 0)) fail("invalid functional map weights");
+  if(s.landmark_orientation < -1 || s.landmark_orientation > 1) fail("landmark_orientation must be -1, 0 or 1");
+  if(s.tear_repair_passes < 0) fail("tear_repair_passes must be non-negative");
+  if(!(s.tear_threshold > 0) || !std::isfinite(s.tear_threshold)) fail("tear_threshold must be positive");
+  if(!(s.tear_min_fraction >= 0) || !(s.tear_min_fraction < 1)) fail("tear_min_fraction must be in [0, 1)");
+  if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
 }
 
 /// The number of eigenpairs the initialisation needs.
@@ -576,11 +608,11 @@ void invoke_both(const A& a, const B& b)
   b();
 }
 
-/// The core of automatic_initial_maps() on precomputed shapes (flat mesh, spectrum with at least
+/// One pass of automatic_initial_maps() on precomputed shapes (flat mesh, spectrum with at least
 /// zoomout_final_size eigenpairs, descriptors from initialization_descriptors() with the same
-/// settings).
+/// settings): fits, selection and coupled ZoomOut, without the tear repair.
 template <typename ConcurrencyTag>
-Automatic_initialization_result automatic_initial_maps(const Initialization_shape& shape1,
+Automatic_initialization_result single_pass_initial_maps(const Initialization_shape& shape1,
                                                        const Initialization_shape& shape2,
                                                        const Initialization_settings& s,
                                                        std::vector<std::size_t>& map_12,
@@ -754,7 +786,9 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
     double score12 = 0, score21 = 0;
   };
   std::vector<Candidate> candidates;
-  const std::vector<int> signs = landmarks.empty() ? std::vector<int>{1} : std::vector<int>{1, -1};
+  const std::vector<int> signs = landmarks.empty()             ? std::vector<int>{1}
+                                 : s.landmark_orientation != 0 ? std::vector<int>{s.landmark_orientation}
+                                                               : std::vector<int>{1, -1};
   for(int sign : signs)
     for(const Fit_candidate& c : s.candidates)
       if(c.basis_size <= kf) candidates.push_back({c, sign, -1, {}, {}});
@@ -921,6 +955,119 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
   return result;
 }
 
+/// The tears of both maps of a pair (1 -> 2 on mesh 1, 2 -> 1 on mesh 2).
+struct Pair_tears
+{
+  Map_tears forth, back;
+  double torn_fraction() const { return 0.5 * (forth.torn_fraction + back.torn_fraction); }
+};
+
+inline Pair_tears pair_tears(const Indexed_mesh& m1, const Indexed_mesh& m2, const std::vector<std::size_t>& map_12,
+                             const std::vector<std::size_t>& map_21, double relative_threshold)
+{
+  const std::vector<int> t12(map_12.begin(), map_12.end()), t21(map_21.begin(), map_21.end());
+  Pair_tears t;
+  t.forth = map_tears(m1, m2, t12, tear_threshold(m2, relative_threshold));
+  t.back = map_tears(m2, m1, t21, tear_threshold(m1, relative_threshold));
+  return t;
+}
+
+/// The tear repair of a pair of maps (see automatic_initial_maps()). A map that swaps two limbs
+/// of a symmetric body, or two feet, is continuous on each part but jumps where a swapped part
+/// meets the rest; cut along these tears, its source falls into regions, of which the largest (the
+/// core) is mapped consistently. While the tears of the maps cut off more than tear_min_fraction
+/// of a mesh, the maps are computed again by single_pass_initial_maps() with
+/// tear_repair_landmarks farthest-point samples of the core of each map (and their images) added
+/// to the landmarks, in the orientation `orientation_sign` (that of the maps, relative to the
+/// embeddings); the landmark descriptors then tell the swapped parts apart. New maps replace the
+/// old ones only when they are less torn. Returns the result of the pass whose maps were kept, or
+/// `result` (the one of the given maps) updated with the torn fractions.
+template <typename ConcurrencyTag>
+Automatic_initialization_result repair_torn_maps(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                                                 const Initialization_settings& s, std::vector<std::size_t>& map_12,
+                                                 std::vector<std::size_t>& map_21, Automatic_initialization_result result)
+{
+  const Indexed_mesh& m1 = *shape1.mesh;
+  const Indexed_mesh& m2 = *shape2.mesh;
+  Pair_tears tears = pair_tears(m1, m2, map_12, map_21, s.tear_threshold);
+  result.torn_fraction_before = result.torn_fraction = tears.torn_fraction();
+  // The orientation hypothesis of the maps, relative to the meshes' own orientations.
+  const int mesh_sign = (signed_volume(m1) * signed_volume(m2) < 0) ? -1 : 1;
+  double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
+  for(int pass = 1; pass <= s.tear_repair_passes; ++pass)
+  {
+    if(std::max(tears.forth.torn_fraction, tears.back.torn_fraction) <= s.tear_min_fraction) break;
+    Initialization_settings repair = s;
+    repair.landmark_orientation = result.orientation_sign * mesh_sign;
+    if(!s.repair_candidates.empty()) repair.candidates = s.repair_candidates;
+    for(const auto& p : core_correspondences(m1, tears.forth, std::vector<int>(map_12.begin(), map_12.end()),
+                                             s.tear_repair_landmarks))
+      repair.landmarks.emplace_back(std::size_t(p.first), std::size_t(p.second));
+    for(const auto& p : core_correspondences(m2, tears.back, std::vector<int>(map_21.begin(), map_21.end()),
+                                             s.tear_repair_landmarks))
+      repair.landmarks.emplace_back(std::size_t(p.second), std::size_t(p.first));
+    std::vector<std::size_t> r12, r21;
+    Automatic_initialization_result r = single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, repair, r12, r21);
+    const Pair_tears repaired = pair_tears(m1, m2, r12, r21, s.tear_threshold);
+    functional_map_seconds += r.functional_map_seconds;
+    zoomout_seconds += r.zoomout_seconds;
+    const bool keep = repaired.torn_fraction() < tears.torn_fraction();
+    if(s.verbose)
+      std::cerr << "automatic_initial_maps: repair pass " << pass << " with " << repair.landmarks.size()
+                << " landmarks: torn fraction " << tears.torn_fraction() << " -> " << repaired.torn_fraction()
+                << (keep ? " (kept)" : " (discarded)") << "\n";
+    if(!keep) break;
+    r.spectra_seconds = result.spectra_seconds;
+    r.torn_fraction_before = result.torn_fraction_before;
+    r.torn_fraction = repaired.torn_fraction();
+    r.repair_passes = pass;
+    result = r;
+    map_12.swap(r12);
+    map_21.swap(r21);
+    tears = repaired;
+  }
+  result.functional_map_seconds = functional_map_seconds;
+  result.zoomout_seconds = zoomout_seconds;
+  return result;
+}
+
+/// The core of automatic_initial_maps() on precomputed shapes (see single_pass_initial_maps()):
+/// one pass, then the tear repair (repair_torn_maps()).
+template <typename ConcurrencyTag>
+Automatic_initialization_result automatic_initial_maps(const Initialization_shape& shape1,
+                                                       const Initialization_shape& shape2,
+                                                       const Initialization_settings& s,
+                                                       std::vector<std::size_t>& map_12,
+                                                       std::vector<std::size_t>& map_21)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const Automatic_initialization_result first =
+      single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21);
+  Automatic_initialization_result result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first);
+  result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+/// repair_torn_maps() for maps computed elsewhere: their orientation (relative to the embeddings)
+/// is read from the orientation agreement of their triangles, and the result holds their tears.
+template <typename ConcurrencyTag>
+Automatic_initialization_result repair_given_maps(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                                                  const Initialization_settings& s, std::vector<std::size_t>& map_12,
+                                                  std::vector<std::size_t>& map_21)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const Indexed_mesh& m1 = *shape1.mesh;
+  const Indexed_mesh& m2 = *shape2.mesh;
+  const std::vector<int> t12(map_12.begin(), map_12.end()), t21(map_21.begin(), map_21.end());
+  Automatic_initialization_result given;
+  given.orientation_agreement = 0.5 * (orientation_agreement(m1, m2, vertex_normals(m2), t12) +
+                                       orientation_agreement(m2, m1, vertex_normals(m1), t21));
+  given.orientation_sign = given.orientation_agreement >= 0.5 ? 1 : -1;
+  Automatic_initialization_result r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given);
+  r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
 /// The spectrum and the descriptors of one flat mesh for automatic_initial_maps(): `given` is
 /// reused when it has exactly the eigenpairs the initialisation needs on the intrinsic Delaunay
 /// triangulation (then the maps equal those computed from the mesh alone), else computed.
@@ -991,7 +1138,10 @@ Automatic_initialization_result automatic_initial_maps_of_meshes(
 /// coupled ZoomOut (Melzi et al. 2019) that grows both maps to `zoomout_final_size`, each step
 /// matching every vertex to its nearest neighbour in the joint embedding
 /// \f$ [\Phi_1 C_{12}, \Phi_1] \f$ vs. \f$ [\Phi_2, \Phi_2 C_{21}] \f$ (which favours inverse
-/// pairs of maps) and refitting.
+/// pairs of maps) and refitting. Finally the tear repair: maps that swap two parts of a
+/// symmetric body (limbs, feet) tear where a swapped part meets the rest; when the regions cut off
+/// by the tears exceed 1% of a mesh, the maps are computed again with landmarks sampled in the
+/// largest region of each map (see repair_torn_maps()), and kept when they are less torn.
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
 /// orientations (signed volumes of opposite signs) the orientation term is reversed
@@ -1029,6 +1179,11 @@ Automatic_initialization_result automatic_initial_maps_of_meshes(
 ///     100, 7, 16).
 ///   - `landmarks`: known correspondences, a range of pairs (vertex index in `tm1`, vertex index in
 ///     `tm2`) (e.g. `std::vector<std::pair<std::size_t, std::size_t>>`); default none.
+///   - `number_of_repair_passes`: tear repair passes at most; type `int`; default 2 (0: no
+///     repair).
+///   - `tear_threshold`: a source edge is torn when its images are at least this far apart,
+///     relative to the square root of the target's area (and at least four mean edge lengths);
+///     type `double`; default 0.06.
 ///   - `verbose`: print progress to `std::cerr`; type `bool`; default false.
 ///   - `vertex_point_map`, `vertex_index_map`: for both meshes (use the same types); defaults the
 ///     meshes' own.
@@ -1077,6 +1232,48 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
   return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(
       shape_1.data().mesh, shape_1.data().spectrum.get(), shape_2.data().mesh, shape_2.data().spectrum.get(), s,
       map_12, map_21, start);
+}
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Repairs maps that swap parts of the shapes (limbs, feet): the tear repair of
+/// automatic_initial_maps() applied to maps computed elsewhere. Each map's source is cut along its
+/// tears (edges whose endpoints land at least `tear_threshold` sqrt(area) apart); when the regions
+/// cut off from the largest one (the core) exceed `tear_min_fraction` of a mesh, both maps are
+/// recomputed by the automatic initialisation with farthest-point samples of the cores (and
+/// their images) as landmarks, in the orientation of the given maps, and kept when they are less
+/// torn. Maps without tears are returned unchanged.
+///
+/// \param map_12, map_21 input and output: `map_12[i]` is the vertex of `tm2` matched to vertex i of
+///   `tm1` (indices of the vertex index maps), `map_21` the other way round
+/// \param np the named parameters of automatic_initial_maps(); `landmarks` are kept in every pass
+/// \returns `repair_passes` (0: the maps were kept), the torn fractions before and after, timings
+/// \throws Invalid_map_error for maps of the wrong size or with entries out of range, and the
+///   exceptions of automatic_initial_maps()
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename TriangleMesh2,
+          typename NamedParameters = parameters::Default_named_parameters>
+Automatic_initialization_result repair_torn_maps(const TriangleMesh1& tm1, const TriangleMesh2& tm2,
+                                                 std::vector<std::size_t>& map_12, std::vector<std::size_t>& map_21,
+                                                 const NamedParameters& np = parameters::default_values())
+{
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  const internal::Initialization_settings s = internal::initialization_settings(np);
+  internal::check_initialization_settings(s);
+  internal::Mesh_requirements req;
+  req.allow_several_components = false;
+  const internal::Indexed_mesh m1 = internal::make_indexed_mesh(tm1, np, req, "mesh 1");
+  const internal::Indexed_mesh m2 = internal::make_indexed_mesh(tm2, np, req, "mesh 2");
+  check_vertex_map(map_12, std::size_t(m1.number_of_vertices()), std::size_t(m2.number_of_vertices()), "map 1->2");
+  check_vertex_map(map_21, std::size_t(m2.number_of_vertices()), std::size_t(m1.number_of_vertices()), "map 2->1");
+  internal::Initialization_mesh_data d1, d2;
+  internal::invoke_both<ConcurrencyTag>(
+      [&] { internal::prepare_initialization_mesh(m1, nullptr, s, "mesh 1", d1); },
+      [&] { internal::prepare_initialization_mesh(m2, nullptr, s, "mesh 2", d2); });
+  const double prepare_seconds = internal::seconds_since(start);
+  const internal::Initialization_shape a{&m1, d1.spectrum, &d1.descriptors}, b{&m2, d2.spectrum, &d2.descriptors};
+  Automatic_initialization_result r = internal::repair_given_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
+  r.spectra_seconds = prepare_seconds;
+  r.total_seconds = internal::seconds_since(start);
+  return r;
 }
 
 } // namespace Surface_mesh_correspondence

@@ -77,7 +77,9 @@ namespace Surface_mesh_correspondence {
   X(zoomout_step_t, zoomout_step, zoomout_step)                                          \
   X(orientation_weight_t, orientation_weight, orientation_weight)                        \
   X(commutativity_weight_t, commutativity_weight, commutativity_weight)                  \
-  X(landmarks_t, landmarks, landmarks)
+  X(landmarks_t, landmarks, landmarks)                                                   \
+  X(number_of_repair_passes_t, number_of_repair_passes, number_of_repair_passes)         \
+  X(tear_threshold_t, tear_threshold, tear_threshold)
 
 namespace internal_np {
 #define CGAL_SMC_DECLARE_TAG(X, Y, Z) enum X { Y };
