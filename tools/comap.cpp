@@ -100,7 +100,7 @@ int match(int argc, char** argv)
   Common_options common;
   std::string out_12, out_21, init_12, init_21, stats;
   int index_base = 1;
-  bool no_refine = false;
+  bool no_refine = false, repair = false;
   Option_parser p("match", "comap match SOURCE TARGET --out-12 FILE --out-21 FILE [options]",
                   "Computes dense point-to-point maps SOURCE -> TARGET and TARGET -> SOURCE: from the given initial maps, "
                   "or from automatic ones (functional maps + ZoomOut), refined jointly by the coupled optimisation of "
@@ -122,6 +122,9 @@ int match(int argc, char** argv)
           "indices 'SOURCE TARGET' per line (--index-base applies)", "",
           [&](const std::string& v) { landmarks_file = v; });
   p.flag("--no-refine", "write the initial (automatic) maps without refining them", [&] { no_refine = true; });
+  p.flag("--repair", "given initial maps: when their tears cut off parts of a mesh (swapped limbs), recompute "
+         "them with landmarks from their consistent core (automatic maps are always repaired, see "
+         "--init-repair-passes)", [&] { repair = true; });
   add_algorithm_options(p, settings, true);
   add_common_options(p, common);
   bool run = true;
@@ -134,7 +137,7 @@ int match(int argc, char** argv)
   const bool automatic = init_12.empty();
   if(!automatic && !landmarks_file.empty())
     throw Usage_error("--landmarks guides the automatic initialisation: do not combine it with --init-12/--init-21");
-  check_settings(settings, automatic);
+  check_settings(settings, automatic || repair);
   check_writable(out_12);
   check_writable(out_21);
   if(!stats.empty()) check_writable(stats);
@@ -160,8 +163,11 @@ int match(int argc, char** argv)
   }
 
   const bool refine = !no_refine;
-  std::unique_ptr<Prepared_shape> s1 = prepare_shape(files[0], std::move(m1), settings, refine, automatic, progress);
-  std::unique_ptr<Prepared_shape> s2 = prepare_shape(files[1], std::move(m2), settings, refine, automatic, progress);
+  const bool initialization_data = automatic || repair;
+  std::unique_ptr<Prepared_shape> s1 =
+      prepare_shape(files[0], std::move(m1), settings, refine, initialization_data, progress);
+  std::unique_ptr<Prepared_shape> s2 =
+      prepare_shape(files[1], std::move(m2), settings, refine, initialization_data, progress);
 
   smc::Automatic_initialization_result initialization;
   if(automatic)
@@ -170,7 +176,13 @@ int match(int argc, char** argv)
     initialization = initialize_maps(*s1, *s2, settings, map_12, map_21);
     progress.line("automatic initial maps in " + duration(initialization.total_seconds) + ": cycle fixed points " +
                   percent(initialization.cycle_fixed_fraction) + ", orientation agreement " +
-                  percent(initialization.orientation_agreement));
+                  percent(initialization.orientation_agreement) + ", " + initialization_summary(initialization));
+  }
+  else if(repair)
+  {
+    progress.line("repairing the tears of the initial maps");
+    initialization = repair_maps(*s1, *s2, settings, map_12, map_21);
+    progress.line("repair in " + duration(initialization.total_seconds) + ": " + initialization_summary(initialization));
   }
   const std::size_t inconsistent_initial = smc::number_of_inconsistent_vertices(map_12, map_21);
   const double coverage_12_initial = smc::map_coverage(map_12, n2), coverage_21_initial = smc::map_coverage(map_21, n1);
@@ -196,11 +208,12 @@ int match(int argc, char** argv)
     json.begin_object().value("command", "match").value("index_base", index_base);
     write_preparation(json, "source", *s1);
     write_preparation(json, "target", *s2);
-    write_settings(json, "settings", settings, automatic);
+    write_settings(json, "settings", settings, initialization_data);
     if(automatic)
       write_initialization(json, "initialization", initialization);
     else
       json.begin_object("initialization").value("map_12", init_12).value("map_21", init_21).end_object();
+    if(repair) write_initialization(json, "repair", initialization);
     json.begin_object("initial_maps")
         .value("inconsistent_vertices", inconsistent_initial)
         .value("coverage_12", coverage_12_initial)
@@ -217,7 +230,7 @@ int match(int argc, char** argv)
     json.begin_object("timings")
         .value("loading_seconds", load_seconds)
         .value("preprocessing_seconds", s1->total_seconds + s2->total_seconds)
-        .value("initialization_seconds", automatic ? initialization.total_seconds : 0.0)
+        .value("initialization_seconds", initialization_data ? initialization.total_seconds : 0.0)
         .value("data_preparation_seconds", refinement.data_preparation_seconds)
         .value("trws_seconds", refinement.trws_seconds)
         .value("refinement_seconds", refinement.total_seconds)
@@ -233,7 +246,11 @@ int match(int argc, char** argv)
     std::cout << "initial maps: automatic (functional maps + ZoomOut) in " << duration(initialization.total_seconds)
               << "\n";
   else
-    std::cout << "initial maps: " << init_12 << ", " << init_21 << "\n";
+    std::cout << "initial maps: " << init_12 << ", " << init_21
+              << (repair ? ", repaired in " + duration(initialization.total_seconds) + ": " +
+                               initialization_summary(initialization)
+                         : std::string())
+              << "\n";
   const std::size_t inconsistent_final = smc::number_of_inconsistent_vertices(map_12, map_21);
   if(refine)
     std::cout << "refinement: " << refinement.kept_outer_iterations << " of " << refinement.outer_iterations
@@ -245,7 +262,8 @@ int match(int argc, char** argv)
   if(refine) std::cout << " -> " << percent(smc::map_coverage(map_12, n2));
   std::cout << "\ntimings: loading " << duration(load_seconds) << ", preprocessing "
             << duration(s1->total_seconds) << " + " << duration(s2->total_seconds);
-  if(automatic) std::cout << ", initialisation " << duration(initialization.total_seconds);
+  if(initialization_data)
+    std::cout << (automatic ? ", initialisation " : ", repair ") << duration(initialization.total_seconds);
   if(refine)
     std::cout << ", data preparation " << duration(refinement.data_preparation_seconds) << ", TRW-S "
               << duration(refinement.trws_seconds);

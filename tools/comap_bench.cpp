@@ -37,7 +37,7 @@ struct Bench_options
 {
   std::string data, pairs, init, out, compare, label;
   int jobs = 1, limit = 0, cache = 0;
-  bool verbose = false;
+  bool verbose = false, no_refine = false, repair = false;
 };
 
 /// A prepared dataset shape with its ground truth.
@@ -121,6 +121,8 @@ struct Pair_result
   Direction_result direction[2];
   std::size_t inconsistent_before = 0, inconsistent_after = 0;
   int outer_iterations = 0, kept_iterations = 0;
+  int repair_passes = 0;                          ///< tear repair passes kept (automatic maps, or --repair)
+  double torn_fraction_before = 0, torn_fraction = 0;
   std::string termination;
   double preprocessing_seconds = 0, initialization_seconds = 0, data_preparation_seconds = 0, trws_seconds = 0,
          refinement_seconds = 0, evaluation_seconds = 0;
@@ -292,6 +294,10 @@ int run_bench(int argc, char** argv)
   p.value("--label", "NAME", "name of this run in the plots", "coupled or non-coupled",
           [&](const std::string& v) { o.label = v; });
   p.flag("--verbose", "a progress line for every MRF solve", [&] { o.verbose = true; });
+  p.flag("--no-refine", "evaluate the initial maps alone (the refined columns repeat them)",
+         [&] { o.no_refine = true; });
+  p.flag("--repair", "with --init: repair the tears of the given maps before the refinement (see comap match "
+         "--repair); the repaired maps go to OUT/repaired_maps/", [&] { o.repair = true; });
   add_algorithm_options(p, settings, true);
   add_common_options(p, common);
   bool run = true;
@@ -300,8 +306,8 @@ int run_bench(int argc, char** argv)
   if(!extra.empty()) throw Usage_error("unexpected argument " + extra.front());
   if(o.data.empty() || o.out.empty()) throw Usage_error("bench needs --data DIR and --out DIR");
   const bool automatic = o.init.empty();
-  check_settings(settings, automatic);
-  if(o.label.empty()) o.label = settings.refinement.use_coupling ? "coupled" : "non-coupled";
+  check_settings(settings, automatic || o.repair);
+  if(o.label.empty()) o.label = o.no_refine ? "no" : settings.refinement.use_coupling ? "coupled" : "non-coupled";
   if(o.pairs.empty()) o.pairs = o.data + "/test_pairs.txt";
   if(!directory_exists(o.data)) throw Input_error("--data: " + o.data + " is not a directory");
   if(!automatic && !directory_exists(o.init)) throw Input_error("--init: " + o.init + " is not a directory");
@@ -328,6 +334,7 @@ int run_bench(int argc, char** argv)
   if(!o.compare.empty()) other = read_run_curves(o.compare);
   make_directories(o.out + "/maps");
   if(automatic) make_directories(o.out + "/init_maps");
+  if(o.repair && !automatic) make_directories(o.out + "/repaired_maps");
 
   const Thread_limit limit(common.threads);
   const Progress progress(common.quiet);
@@ -344,7 +351,8 @@ int run_bench(int argc, char** argv)
                     [&](const std::string& name) {
                       std::shared_ptr<Bench_shape> s(new Bench_shape);
                       Mesh mesh = read_triangle_mesh(mesh_file(name));
-                      s->prepared = prepare_shape(name, std::move(mesh), settings, true, automatic, step_progress);
+                      s->prepared = prepare_shape(name, std::move(mesh), settings, !o.no_refine, automatic || o.repair,
+                                                  step_progress);
                       const std::size_t n = s->prepared->number_of_vertices();
                       s->vts = read_correspondences(vts_file(name), 1, n);
                       if(file_exists(sym_file(name))) s->sym = read_correspondences(sym_file(name), 1, n);
@@ -372,6 +380,9 @@ int run_bench(int argc, char** argv)
       {
         const smc::Automatic_initialization_result init = initialize_maps(*A->prepared, *B->prepared, settings, m12, m21);
         r.initialization_seconds = init.total_seconds;
+        r.repair_passes = init.repair_passes;
+        r.torn_fraction_before = init.torn_fraction_before;
+        r.torn_fraction = init.torn_fraction;
         write_vertex_map(map_file(o.out + "/init_maps", r.a, r.b), m12, 1);
         write_vertex_map(map_file(o.out + "/init_maps", r.b, r.a), m21, 1);
       }
@@ -388,12 +399,33 @@ int run_bench(int argc, char** argv)
       r.direction[0].initial = evaluate(*A, *B, m12, m21);
       r.direction[1].initial = evaluate(*B, *A, m21, m12);
       r.evaluation_seconds = eval_watch.seconds();
-      const smc::Coupled_refinement_result refinement =
-          refine_maps(*A->prepared, *B->prepared, m12, m21, settings, automatic, step_progress, r.a + " - " + r.b + ": ");
-      eval_watch.reset();
-      r.direction[0].refined = evaluate(*A, *B, m12, m21);
-      r.direction[1].refined = evaluate(*B, *A, m21, m12);
-      r.evaluation_seconds += eval_watch.seconds();
+      if(!automatic && o.repair)
+      {
+        const smc::Automatic_initialization_result rep = repair_maps(*A->prepared, *B->prepared, settings, m12, m21);
+        r.initialization_seconds = rep.total_seconds;
+        r.repair_passes = rep.repair_passes;
+        r.torn_fraction_before = rep.torn_fraction_before;
+        r.torn_fraction = rep.torn_fraction;
+        write_vertex_map(map_file(o.out + "/repaired_maps", r.a, r.b), m12, 1);
+        write_vertex_map(map_file(o.out + "/repaired_maps", r.b, r.a), m21, 1);
+      }
+      smc::Coupled_refinement_result refinement;
+      if(o.no_refine)
+      {
+        r.direction[0].refined = r.direction[0].initial;
+        r.direction[1].refined = r.direction[1].initial;
+        refinement.inconsistent_vertices_before = refinement.inconsistent_vertices_after =
+            smc::number_of_inconsistent_vertices(m12, m21);
+      }
+      else
+      {
+        refinement = refine_maps(*A->prepared, *B->prepared, m12, m21, settings, automatic, step_progress,
+                                 r.a + " - " + r.b + ": ");
+        eval_watch.reset();
+        r.direction[0].refined = evaluate(*A, *B, m12, m21);
+        r.direction[1].refined = evaluate(*B, *A, m21, m12);
+        r.evaluation_seconds += eval_watch.seconds();
+      }
       write_vertex_map(map_file(o.out + "/maps", r.a, r.b), m12, 1);
       write_vertex_map(map_file(o.out + "/maps", r.b, r.a), m21, 1);
       r.inconsistent_before = refinement.inconsistent_vertices_before;
@@ -458,7 +490,7 @@ int run_bench(int argc, char** argv)
            "refined_sym_error,initial_cycle_error,refined_cycle_error,initial_fixed_points,refined_fixed_points,"
            "initial_coverage,refined_coverage,inconsistent_before,inconsistent_after,outer_iterations,"
            "kept_iterations,termination,preprocessing_seconds,initialization_seconds,data_preparation_seconds,"
-           "trws_seconds,refinement_seconds,evaluation_seconds\n";
+           "trws_seconds,refinement_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction\n";
     for(const Pair_result& r : results)
     {
       if(!r.ok)
@@ -491,7 +523,8 @@ int run_bench(int argc, char** argv)
             << r.kept_iterations << "," << r.termination << "," << shortest(r.preprocessing_seconds) << ","
             << shortest(r.initialization_seconds) << "," << shortest(r.data_preparation_seconds) << ","
             << shortest(r.trws_seconds) << "," << shortest(r.refinement_seconds) << ","
-            << shortest(r.evaluation_seconds) << "\n";
+            << shortest(r.evaluation_seconds) << "," << r.repair_passes << "," << shortest(r.torn_fraction_before)
+            << "," << shortest(r.torn_fraction) << "\n";
       }
     }
   }
@@ -581,7 +614,7 @@ int run_bench(int argc, char** argv)
         .value("pairs", succeeded)
         .value("maps", 2 * succeeded)
         .value("failed_pairs", failed);
-    write_settings(json, "settings", settings, automatic);
+    write_settings(json, "settings", settings, automatic || o.repair);
     write_aggregate(json, "initial", initial);
     write_aggregate(json, "refined", refined);
     const double n = succeeded > 0 ? static_cast<double>(succeeded) : 1.0;

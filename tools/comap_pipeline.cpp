@@ -73,17 +73,41 @@ std::string preparation_summary(const Prepared_shape& s)
   return out;
 }
 
+namespace {
+
+smc::internal::Initialization_shape initialization_shape(const Prepared_shape& s)
+{
+  if(s.initialization_descriptors.size() == 0)
+    throw std::logic_error("the shape " + s.name + " was not prepared for the initialisation");
+  smc::internal::Initialization_shape out;
+  out.mesh = &s.indexed_mesh();
+  out.spectrum = &s.initialization_spectrum();
+  out.descriptors = &s.initialization_descriptors;
+  return out;
+}
+
+} // namespace
+
 smc::Automatic_initialization_result initialize_maps(const Prepared_shape& a, const Prepared_shape& b,
                                                      const Settings& settings, Vertex_map& map_12, Vertex_map& map_21)
 {
-  smc::internal::Initialization_shape sa, sb;
-  sa.mesh = &a.indexed_mesh();
-  sa.spectrum = &a.initialization_spectrum();
-  sa.descriptors = &a.initialization_descriptors;
-  sb.mesh = &b.indexed_mesh();
-  sb.spectrum = &b.initialization_spectrum();
-  sb.descriptors = &b.initialization_descriptors;
-  return smc::internal::automatic_initial_maps<Concurrency>(sa, sb, settings.initialization, map_12, map_21);
+  return smc::internal::automatic_initial_maps<Concurrency>(initialization_shape(a), initialization_shape(b),
+                                                            settings.initialization, map_12, map_21);
+}
+
+smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const Prepared_shape& b,
+                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21)
+{
+  return smc::internal::repair_given_maps<Concurrency>(initialization_shape(a), initialization_shape(b),
+                                                       settings.initialization, map_12, map_21);
+}
+
+std::string initialization_summary(const smc::Automatic_initialization_result& r)
+{
+  return "torn fraction " + percent(r.torn_fraction_before) +
+         (r.repair_passes > 0 ? " -> " + percent(r.torn_fraction) + " after " + std::to_string(r.repair_passes) +
+                                    " repair pass(es)"
+                              : std::string(" (kept)"));
 }
 
 namespace {
@@ -156,6 +180,9 @@ void write_initialization(Json_writer& json, const std::string& key, const smc::
       .value("orientation_agreement", r.orientation_agreement)
       .value("initial_basis_size", r.initial_basis_size)
       .value("final_basis_size", r.final_basis_size)
+      .value("repair_passes", r.repair_passes)
+      .value("torn_fraction_before", r.torn_fraction_before)
+      .value("torn_fraction", r.torn_fraction)
       .end_object();
 }
 

@@ -71,6 +71,12 @@ std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh
 smc::Automatic_initialization_result initialize_maps(const Prepared_shape& a, const Prepared_shape& b,
                                                      const Settings& settings, Vertex_map& map_12,
                                                      Vertex_map& map_21);
+/// The tear repair of the automatic initialisation applied to given maps (see
+/// smc::repair_torn_maps()); the shapes must be prepared for the initialisation.
+smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const Prepared_shape& b,
+                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21);
+/// One progress line describing an initialisation or repair result.
+std::string initialization_summary(const smc::Automatic_initialization_result& r);
 
 /// The coupled refinement of `map_12` and `map_21` in place, with one progress line per MRF
 /// solve prefixed by `label`. `automatic_input`: the maps come from initialize_maps() (see

@@ -190,6 +190,20 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   p.value("--init-samples", "N", "vertices sampled per ZoomOut iteration (0: all)",
           std::to_string(di.zoomout_number_of_samples),
           [&in](const std::string& v) { in.zoomout_number_of_samples = parse_int("--init-samples", v, 0, 100000000); });
+  p.value("--init-repair-passes", "N", "tear repair passes at most: maps whose tears cut off part of a mesh are "
+          "recomputed with landmarks from their core (0: no repair)",
+          std::to_string(di.tear_repair_passes),
+          [&in](const std::string& v) { in.tear_repair_passes = parse_int("--init-repair-passes", v, 0, 100); });
+  p.value("--init-tear-threshold", "X", "a source edge is torn when its images are this far apart (relative to "
+          "sqrt(area) of the target)",
+          shortest(di.tear_threshold),
+          [&in](const std::string& v) { in.tear_threshold = parse_double("--init-tear-threshold", v); });
+  p.value("--init-tear-fraction", "X", "repair when the tears cut off more than this area fraction of a mesh",
+          shortest(di.tear_min_fraction),
+          [&in](const std::string& v) { in.tear_min_fraction = parse_double("--init-tear-fraction", v); });
+  p.value("--init-repair-landmarks", "N", "landmarks sampled in the core of each map by a repair pass",
+          std::to_string(di.tear_repair_landmarks),
+          [&in](const std::string& v) { in.tear_repair_landmarks = parse_int("--init-repair-landmarks", v, 1, 100000); });
 }
 
 void check_settings(const Settings& s, bool with_initialization)
