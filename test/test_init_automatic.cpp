@@ -338,6 +338,23 @@ BOOST_AUTO_TEST_CASE(tear_repair_restores_swapped_limbs)
   const smc::Automatic_initialization_result a = smc::automatic_initial_maps(
       f.pair.m1, f.pair.m2, a12, a21, params::number_of_repair_passes(0));
   BOOST_TEST(a.repair_passes == 0);
+  // A tear threshold larger than the shapes sees no tear, and no repair pass leaves the maps alone.
+  std::vector<std::size_t> n12 = s.map_12, n21 = s.map_21;
+  const smc::Automatic_initialization_result n =
+      smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21, params::tear_threshold(10.0));
+  BOOST_TEST(n.repair_passes == 0);
+  BOOST_TEST(n.torn_fraction_before == 0.0);
+  BOOST_TEST(n12 == s.map_12);
+  const smc::Automatic_initialization_result z =
+      smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21, params::number_of_repair_passes(0));
+  BOOST_TEST(z.repair_passes == 0);
+  BOOST_TEST(z.torn_fraction_before > 0.03);  // measured, not repaired
+  BOOST_TEST(n12 == s.map_12);
+  BOOST_TEST(n21 == s.map_21);
+  BOOST_CHECK_THROW(smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21, params::tear_threshold(0.0)),
+                    smc::Invalid_parameter_error);
+  BOOST_CHECK_THROW(smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21, params::number_of_repair_passes(-1)),
+                    smc::Invalid_parameter_error);
   // Maps that do not fit the meshes are rejected.
   std::vector<std::size_t> short12(s.map_12.begin(), s.map_12.end() - 1), bad21 = s.map_21;
   BOOST_CHECK_THROW(smc::repair_torn_maps(f.pair.m1, f.pair.m2, short12, bad21), smc::Invalid_map_error);
