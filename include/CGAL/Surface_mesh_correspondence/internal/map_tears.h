@@ -111,7 +111,7 @@ inline Map_tears map_tears(const Indexed_mesh& source, const Indexed_mesh& targe
   return t;
 }
 
-/// `count` farthest-point samples of the core of `tears` (geodesic along the core's edges) with
+/// `count` farthest-point samples of the core of `tears` (geodesic along the source's edges) with
 /// their images under `map`, as (source vertex, target vertex) pairs; fewer when the core is
 /// smaller. The samples keep away from the tears by `margin` (relative to sqrt(area) of the
 /// source) where the core allows it: a tear often has a wrongly mapped band on its core side too
