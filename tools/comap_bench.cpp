@@ -126,6 +126,14 @@ struct Pair_result
   std::string termination;
   double preprocessing_seconds = 0, initialization_seconds = 0, data_preparation_seconds = 0, trws_seconds = 0,
          refinement_seconds = 0, evaluation_seconds = 0;
+  /// The time and the tear repair figures of an initialisation or a repair.
+  void set_initialization(const smc::Automatic_initialization_result& init)
+  {
+    initialization_seconds = init.total_seconds;
+    repair_passes = init.repair_passes;
+    torn_fraction_before = init.torn_fraction_before;
+    torn_fraction = init.torn_fraction;
+  }
 };
 
 std::vector<std::pair<std::string, std::string> > read_pairs(const std::string& file)
@@ -378,11 +386,7 @@ int run_bench(int argc, char** argv)
       Vertex_map m12, m21;
       if(automatic)
       {
-        const smc::Automatic_initialization_result init = initialize_maps(*A->prepared, *B->prepared, settings, m12, m21);
-        r.initialization_seconds = init.total_seconds;
-        r.repair_passes = init.repair_passes;
-        r.torn_fraction_before = init.torn_fraction_before;
-        r.torn_fraction = init.torn_fraction;
+        r.set_initialization(initialize_maps(*A->prepared, *B->prepared, settings, m12, m21));
         write_vertex_map(map_file(o.out + "/init_maps", r.a, r.b), m12, 1);
         write_vertex_map(map_file(o.out + "/init_maps", r.b, r.a), m21, 1);
       }
@@ -401,11 +405,7 @@ int run_bench(int argc, char** argv)
       r.evaluation_seconds = eval_watch.seconds();
       if(!automatic && o.repair)
       {
-        const smc::Automatic_initialization_result rep = repair_maps(*A->prepared, *B->prepared, settings, m12, m21);
-        r.initialization_seconds = rep.total_seconds;
-        r.repair_passes = rep.repair_passes;
-        r.torn_fraction_before = rep.torn_fraction_before;
-        r.torn_fraction = rep.torn_fraction;
+        r.set_initialization(repair_maps(*A->prepared, *B->prepared, settings, m12, m21));
         write_vertex_map(map_file(o.out + "/repaired_maps", r.a, r.b), m12, 1);
         write_vertex_map(map_file(o.out + "/repaired_maps", r.b, r.a), m21, 1);
       }

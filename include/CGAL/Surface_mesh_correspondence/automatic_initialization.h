@@ -965,10 +965,9 @@ struct Pair_tears
 inline Pair_tears pair_tears(const Indexed_mesh& m1, const Indexed_mesh& m2, const std::vector<std::size_t>& map_12,
                              const std::vector<std::size_t>& map_21, double relative_threshold)
 {
-  const std::vector<int> t12(map_12.begin(), map_12.end()), t21(map_21.begin(), map_21.end());
   Pair_tears t;
-  t.forth = map_tears(m1, m2, t12, tear_threshold(m2, relative_threshold));
-  t.back = map_tears(m2, m1, t21, tear_threshold(m1, relative_threshold));
+  t.forth = map_tears(m1, m2, map_12, tear_threshold(m2, relative_threshold));
+  t.back = map_tears(m2, m1, map_21, tear_threshold(m1, relative_threshold));
   return t;
 }
 
@@ -1000,11 +999,9 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
     Initialization_settings repair = s;
     repair.landmark_orientation = result.orientation_sign * mesh_sign;
     if(!s.repair_candidates.empty()) repair.candidates = s.repair_candidates;
-    for(const auto& p : core_correspondences(m1, tears.forth, std::vector<int>(map_12.begin(), map_12.end()),
-                                             s.tear_repair_landmarks))
+    for(const auto& p : core_correspondences(m1, tears.forth, map_12, s.tear_repair_landmarks))
       repair.landmarks.emplace_back(std::size_t(p.first), std::size_t(p.second));
-    for(const auto& p : core_correspondences(m2, tears.back, std::vector<int>(map_21.begin(), map_21.end()),
-                                             s.tear_repair_landmarks))
+    for(const auto& p : core_correspondences(m2, tears.back, map_21, s.tear_repair_landmarks))
       repair.landmarks.emplace_back(std::size_t(p.second), std::size_t(p.first));
     std::vector<std::size_t> r12, r21;
     Automatic_initialization_result r = single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, repair, r12, r21);
@@ -1098,6 +1095,26 @@ inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_bel
   out.descriptors = initialization_descriptors<CGAL::Sequential_tag>(m, *out.spectrum, s);
 }
 
+/// Prepares both meshes for the initialisation (concurrently; `given1`, `given2`: spectra to
+/// reuse, or null) and runs `f(shape1, shape2)`; the result gets the preparation time and the
+/// total time since `start`.
+template <typename ConcurrencyTag, typename F>
+Automatic_initialization_result on_prepared_meshes(const Indexed_mesh& m1, const Laplace_beltrami_spectrum* given1,
+                                                   const Indexed_mesh& m2, const Laplace_beltrami_spectrum* given2,
+                                                   const Initialization_settings& s,
+                                                   std::chrono::steady_clock::time_point start, const F& f)
+{
+  Initialization_mesh_data d1, d2;
+  invoke_both<ConcurrencyTag>([&] { prepare_initialization_mesh(m1, given1, s, "mesh 1", d1); },
+                              [&] { prepare_initialization_mesh(m2, given2, s, "mesh 2", d2); });
+  const double prepare_seconds = seconds_since(start);
+  const Initialization_shape a{&m1, d1.spectrum, &d1.descriptors}, b{&m2, d2.spectrum, &d2.descriptors};
+  Automatic_initialization_result r = f(a, b);
+  r.spectra_seconds = prepare_seconds;
+  r.total_seconds = seconds_since(start);
+  return r;
+}
+
 /// Both public overloads of automatic_initial_maps(): prepares the two flat meshes (in parallel
 /// with Parallel_tag) and runs the core; the times count from `start`.
 template <typename ConcurrencyTag>
@@ -1106,24 +1123,19 @@ Automatic_initialization_result automatic_initial_maps_of_meshes(
     const Laplace_beltrami_spectrum* given2, const Initialization_settings& s, std::vector<std::size_t>& map_12,
     std::vector<std::size_t>& map_21, std::chrono::steady_clock::time_point start)
 {
-  auto since_start = [start] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  Initialization_mesh_data d1, d2;
-  invoke_both<ConcurrencyTag>([&] { prepare_initialization_mesh(m1, given1, s, "mesh 1", d1); },
-                              [&] { prepare_initialization_mesh(m2, given2, s, "mesh 2", d2); });
-  const double prepare_seconds = since_start();
-  Initialization_shape a, b;
-  a.mesh = &m1;
-  a.spectrum = d1.spectrum;
-  a.descriptors = &d1.descriptors;
-  b.mesh = &m2;
-  b.spectrum = d2.spectrum;
-  b.descriptors = &d2.descriptors;
-  Automatic_initialization_result r = automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
-  r.spectra_seconds = prepare_seconds;
-  r.total_seconds = since_start();
-  return r;
+  return on_prepared_meshes<ConcurrencyTag>(m1, given1, m2, given2, s, start,
+                                            [&](const Initialization_shape& a, const Initialization_shape& b) {
+                                              return automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
+                                            });
+}
+
+/// A connected indexed copy of a mesh for automatic_initial_maps() and repair_torn_maps().
+template <typename TriangleMesh, typename NamedParameters>
+Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& np, const char* name)
+{
+  Mesh_requirements req;
+  req.allow_several_components = false;
+  return make_indexed_mesh(tm, np, req, name);
 }
 
 } // namespace internal
@@ -1201,10 +1213,8 @@ Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1,
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   const internal::Initialization_settings s = internal::initialization_settings(np);
   internal::check_initialization_settings(s);
-  internal::Mesh_requirements req;
-  req.allow_several_components = false;
-  const internal::Indexed_mesh m1 = internal::make_indexed_mesh(tm1, np, req, "mesh 1");
-  const internal::Indexed_mesh m2 = internal::make_indexed_mesh(tm2, np, req, "mesh 2");
+  const internal::Indexed_mesh m1 = internal::initialization_mesh(tm1, np, "mesh 1");
+  const internal::Indexed_mesh m2 = internal::initialization_mesh(tm2, np, "mesh 2");
   return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(m1, nullptr, m2, nullptr, s, map_12, map_21,
                                                                     start);
 }
@@ -1258,22 +1268,15 @@ Automatic_initialization_result repair_torn_maps(const TriangleMesh1& tm1, const
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   const internal::Initialization_settings s = internal::initialization_settings(np);
   internal::check_initialization_settings(s);
-  internal::Mesh_requirements req;
-  req.allow_several_components = false;
-  const internal::Indexed_mesh m1 = internal::make_indexed_mesh(tm1, np, req, "mesh 1");
-  const internal::Indexed_mesh m2 = internal::make_indexed_mesh(tm2, np, req, "mesh 2");
+  const internal::Indexed_mesh m1 = internal::initialization_mesh(tm1, np, "mesh 1");
+  const internal::Indexed_mesh m2 = internal::initialization_mesh(tm2, np, "mesh 2");
   check_vertex_map(map_12, std::size_t(m1.number_of_vertices()), std::size_t(m2.number_of_vertices()), "map 1->2");
   check_vertex_map(map_21, std::size_t(m2.number_of_vertices()), std::size_t(m1.number_of_vertices()), "map 2->1");
-  internal::Initialization_mesh_data d1, d2;
-  internal::invoke_both<ConcurrencyTag>(
-      [&] { internal::prepare_initialization_mesh(m1, nullptr, s, "mesh 1", d1); },
-      [&] { internal::prepare_initialization_mesh(m2, nullptr, s, "mesh 2", d2); });
-  const double prepare_seconds = internal::seconds_since(start);
-  const internal::Initialization_shape a{&m1, d1.spectrum, &d1.descriptors}, b{&m2, d2.spectrum, &d2.descriptors};
-  Automatic_initialization_result r = internal::repair_given_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
-  r.spectra_seconds = prepare_seconds;
-  r.total_seconds = internal::seconds_since(start);
-  return r;
+  return internal::on_prepared_meshes<ConcurrencyTag>(
+      m1, nullptr, m2, nullptr, s, start,
+      [&](const internal::Initialization_shape& a, const internal::Initialization_shape& b) {
+        return internal::repair_given_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
+      });
 }
 
 } // namespace Surface_mesh_correspondence

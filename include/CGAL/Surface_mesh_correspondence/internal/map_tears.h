@@ -51,9 +51,10 @@ inline double tear_threshold(const Indexed_mesh& target, double relative_thresho
 /// Cuts the source of `map` (source vertex -> target vertex) along its tears: the edges (i, j)
 /// whose images are at least `threshold` apart (Euclidean distance, a lower bound of the
 /// geodesic one, so touching parts of the target can hide a tear but never make one). Vertices
-/// on a torn edge belong to no region; the others are grouped by connectivity.
-inline Map_tears map_tears(const Indexed_mesh& source, const Indexed_mesh& target, const std::vector<int>& map,
-                           double threshold)
+/// on a torn edge belong to no region; the others are grouped by connectivity. `VertexMap`: a
+/// random-access range of target vertex indices (std::vector<int> or std::vector<std::size_t>).
+template <typename VertexMap>
+Map_tears map_tears(const Indexed_mesh& source, const Indexed_mesh& target, const VertexMap& map, double threshold)
 {
   const int n = source.number_of_vertices();
   Map_tears t;
@@ -116,9 +117,9 @@ inline Map_tears map_tears(const Indexed_mesh& source, const Indexed_mesh& targe
 /// smaller. The samples keep away from the tears by `margin` (relative to sqrt(area) of the
 /// source) where the core allows it: a tear often has a wrongly mapped band on its core side too
 /// (the tear is where the map jumps, not necessarily where it goes wrong). Empty without a core.
-inline std::vector<std::pair<int, int> > core_correspondences(const Indexed_mesh& source, const Map_tears& tears,
-                                                              const std::vector<int>& map, int count,
-                                                              double margin = 0.1)
+template <typename VertexMap>
+std::vector<std::pair<int, int> > core_correspondences(const Indexed_mesh& source, const Map_tears& tears,
+                                                       const VertexMap& map, int count, double margin = 0.1)
 {
   std::vector<std::pair<int, int> > pairs;
   if(tears.core < 0 || count <= 0) return pairs;
@@ -143,7 +144,7 @@ inline std::vector<std::pair<int, int> > core_correspondences(const Indexed_mesh
   Farthest_point_sampler sampler(graph);
   std::vector<int> samples;
   sampler.sample(core.data(), core.size(), nullptr, 0, std::min<int>(count, static_cast<int>(core.size())), samples);
-  for(int v : samples) pairs.emplace_back(v, map[v]);
+  for(int v : samples) pairs.emplace_back(v, static_cast<int>(map[v]));
   return pairs;
 }
 
