@@ -211,21 +211,38 @@ BOOST_AUTO_TEST_CASE(coupling_helps)
 BOOST_AUTO_TEST_CASE(units_do_not_matter)
 {
   const Fixture& f = fixture();
-  const Mesh big = transformed(f.pair.m2, [](const Point& p) { return Point(1000 * p.x(), 1000 * p.y(), 1000 * p.z()); });
-  const Shape s2big(big, shape_parameters());
   const smc::Vertex_index_map_vector m12 = perturbed(f.pair.gt_12, f.pair.m2, 0.3, 4, 11);
   const smc::Vertex_index_map_vector m21 = perturbed(f.pair.gt_21, f.pair.m1, 0.3, 4, 12);
-  smc::Vertex_index_map_vector a12 = m12, a21 = m21, b12 = m12, b21 = m21;
+  smc::Vertex_index_map_vector a12 = m12, a21 = m21;
   smc::refine_coupled_maps(f.s1, f.s2, a12, a21);
-  smc::refine_coupled_maps(f.s1, s2big, b12, b21);
-  std::size_t same = 0;
-  for(std::size_t i = 0; i < a12.size(); ++i) same += a12[i] == b12[i];
-  for(std::size_t i = 0; i < a21.size(); ++i) same += a21[i] == b21[i];
-  BOOST_TEST_MESSAGE("scaled target: " << same << " of " << a12.size() + a21.size() << " matches identical");
-  // Float rounding differs in the last bits, which may break a few near-ties differently.
-  BOOST_TEST(same >= 0.95 * (a12.size() + a21.size()));
-  const double ea = f.error_12(a12) + f.error_21(a21), eb = f.error_12(b12) + f.error_21(b21);
-  BOOST_TEST(std::abs(eb - ea) < 0.002);  // a tenth of an edge length
+  const double ea = f.error_12(a12) + f.error_21(a21);
+  for(double scale : {1024.0, 1000.0})
+  {
+    const Mesh big = transformed(f.pair.m2, [scale](const Point& p) { return Point(scale * p.x(), scale * p.y(), scale * p.z()); });
+    const Shape s2big(big, shape_parameters());
+    smc::Vertex_index_map_vector b12 = m12, b21 = m21;
+    smc::refine_coupled_maps(f.s1, s2big, b12, b21);
+    std::size_t same = 0;
+    for(std::size_t i = 0; i < a12.size(); ++i) same += a12[i] == b12[i];
+    for(std::size_t i = 0; i < a21.size(); ++i) same += a21[i] == b21[i];
+    const double eb = f.error_12(b12) + f.error_21(b21);
+    BOOST_TEST_MESSAGE("target scaled by " << scale << ": " << same << " of " << a12.size() + a21.size()
+                       << " matches identical, errors " << ea << " and " << eb);
+    if(scale == 1024.0)
+    {
+      // A power of two scales every length, area and eigenvalue exactly: once normalised by the
+      // square root of the area, every number is the same, so must be the maps (no absolute
+      // tolerance anywhere).
+      BOOST_TEST(same == a12.size() + a21.size());
+    }
+    else
+    {
+      // Other factors change the last bits, which breaks some near-ties of the MRFs differently
+      // (about 10% of the matches with FMA): the maps are equally good, not identical (0.0018
+      // apart with FMA; a scale-dependent weight would move them by far more).
+      BOOST_TEST(std::abs(eb - ea) < 0.003);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(generic_entry_point_with_property_maps)
