@@ -96,6 +96,8 @@ BOOST_AUTO_TEST_CASE(match_refines_given_maps_0_and_1_based)
   for(const char* key : {"\"settings\"", "\"refinement\"", "\"steps\"", "\"timings\"", "\"data_preparation_seconds\""})
     BOOST_TEST(stats.find(key) != std::string::npos, key);
   BOOST_TEST(r0.out.find("0-based") != std::string::npos);
+  // Given maps: the default stop rule runs the whole schedule (--rings 3,2: 2 outer iterations).
+  BOOST_TEST(stats.find("\"outer_iterations\": 2,") != std::string::npos);
 
   // The same maps 1-based give the same result, written 1-based.
   const Run r1 = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("noisy12_1.map") + " --init-21 " +
@@ -140,6 +142,22 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
              smc::number_of_inconsistent_vertices(read_map(in_scratch("b12.map"), 1), read_map(in_scratch("b21.map"), 1)));
   BOOST_TEST(read_text(in_scratch("full.json")).find("\"initialization\"") != std::string::npos);
   BOOST_TEST(read_text(in_scratch("full.json")).find("\"keep_consistent_input_maps\": \"on\"") != std::string::npos);
+
+  // --stop-rule auto (the default) is the Eq. (4) early stop for automatic maps: the same maps as
+  // --stop-rule consistency; the whole schedule (--stop-rule none, 2 outer iterations with
+  // --rings 3,2) returns maps at least as consistent.
+  auto run = [&](const std::string& rule, const std::string& tag) {
+    const Run r = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch(tag + "12.map") + " --out-21 " +
+                        in_scratch(tag + "21.map") + " --stats " + in_scratch(tag + ".json") + rule + fast_options());
+    BOOST_TEST_REQUIRE(r.code == 0, r.err);
+    return std::make_pair(read_map(in_scratch(tag + "12.map"), 1), read_map(in_scratch(tag + "21.map"), 1));
+  };
+  const auto early = run(" --stop-rule consistency", "early"), all = run(" --stop-rule none", "all");
+  BOOST_TEST((early.first == f12 && early.second == f21));
+  BOOST_TEST(read_text(in_scratch("full.json")).find("\"stop_when_consistency_worsens\": \"auto\"") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("all.json")).find("\"outer_iterations\": 2,") != std::string::npos);
+  BOOST_TEST(smc::number_of_inconsistent_vertices(all.first, all.second) <=
+             smc::number_of_inconsistent_vertices(f12, f21));
 }
 
 BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)

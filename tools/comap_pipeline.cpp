@@ -145,6 +145,7 @@ smc::Coupled_refinement_result refine_maps(const Prepared_shape& a, const Prepar
   smc::Refinement_settings r = settings.refinement;
   r.keep_consistent_input_maps =
       settings.keep_consistent_input_maps < 0 ? !automatic_input : settings.keep_consistent_input_maps == 1;
+  r.stop_when_consistency_worsens = settings.stop_rule < 0 ? automatic_input : settings.stop_rule == 1;
   return smc::refine_coupled_maps<Concurrency>(*a.shape, *b.shape, map_12, map_21, refinement_parameters(r, visitor));
 }
 

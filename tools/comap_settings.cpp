@@ -72,10 +72,13 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   p.value("--pairwise-rings", "N", "pairwise terms between source vertices at most N rings apart (1: mesh edges)",
           std::to_string(d.refinement.pairwise_rings),
           [&r](const std::string& v) { r.pairwise_rings = parse_int("--pairwise-rings", v, 1, 10); });
-  p.value("--stop-rule", "consistency|none", "consistency: stop when the cycle-consistency error of Eq. (4) grows; "
-          "none: run every outer iteration (the most consistent maps are returned either way)",
-          d.refinement.stop_when_consistency_worsens ? "consistency" : "none", [&r](const std::string& v) {
-            r.stop_when_consistency_worsens = parse_choice("--stop-rule", v, {"none", "consistency"}) == 1;
+  p.value("--stop-rule", "auto|consistency|none", "consistency: stop when the cycle-consistency error of Eq. (4) "
+          "grows; none: run every outer iteration (the most consistent maps are returned either way); auto: "
+          "consistency for automatic initial maps (no refined iterate is more consistent than they are), none for "
+          "given ones",
+          "auto", [&s](const std::string& v) {
+            const int c = parse_choice("--stop-rule", v, {"none", "consistency", "auto"});
+            s.stop_rule = c == 2 ? -1 : c;
           });
   p.value("--keep-input", "auto|on|off",
           "on: return the input maps unchanged when no refined iterate is more consistent (the paper's rule); "
@@ -234,7 +237,8 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
       .value("use_coupling", r.use_coupling)
       .value("use_neighbor_matches", r.use_neighbor_matches)
       .value("pairwise_rings", r.pairwise_rings)
-      .value("stop_when_consistency_worsens", r.stop_when_consistency_worsens)
+      .value("stop_when_consistency_worsens", s.stop_rule < 0 ? std::string("auto")
+                                                              : std::string(s.stop_rule ? "on" : "off"))
       .value("keep_consistent_input_maps", s.keep_consistent_input_maps < 0
                                                 ? std::string("auto")
                                                 : std::string(s.keep_consistent_input_maps ? "on" : "off"))
