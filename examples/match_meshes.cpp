@@ -56,8 +56,10 @@ int main(int argc, char** argv)
     const smc::Coupled_refinement_result r = smc::refine_coupled_maps(
         s1, s2, x12, x21,
         // The paper's rule: the automatic maps, consistent by construction, are kept unless a
-        // refined iterate is more consistent (keep_consistent_input_maps(false) always refines).
-        smc::parameters::visitor(std::ref(visitor)));
+        // refined iterate is more consistent (keep_consistent_input_maps(false) always refines);
+        // with the paper's early stop of Eq. (4), an iterate that is not (the usual case for
+        // automatic maps) ends the refinement after one outer iteration, as `comap` does.
+        smc::parameters::visitor(std::ref(visitor)).stop_when_consistency_worsens(true));
     std::cerr << "refinement: " << r.inconsistent_vertices_before << " -> " << r.inconsistent_vertices_after
               << " inconsistent vertices in " << r.total_seconds << " s\n";
 
