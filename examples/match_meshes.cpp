@@ -59,7 +59,7 @@ int main(int argc, char** argv)
         // refined iterate is more consistent (keep_consistent_input_maps(false) always refines);
         // with the paper's early stop of Eq. (4), an iterate that is not (the usual case for
         // automatic maps) ends the refinement after one outer iteration, as `comap` does.
-        smc::parameters::visitor(std::ref(visitor)).stop_when_consistency_worsens(true));
+        smc::parameters::stop_when_consistency_worsens(true).visitor(std::ref(visitor)));
     std::cerr << "refinement: " << r.inconsistent_vertices_before << " -> " << r.inconsistent_vertices_after
               << " inconsistent vertices in " << r.total_seconds << " s\n";
 
