@@ -143,9 +143,9 @@ smc::Coupled_refinement_result refine_maps(const Prepared_shape& a, const Prepar
   visitor.label = label;
   visitor.outer_iterations = settings.refinement.outer_iterations();
   smc::Refinement_settings r = settings.refinement;
-  r.keep_consistent_input_maps =
-      settings.keep_consistent_input_maps < 0 ? !automatic_input : settings.keep_consistent_input_maps == 1;
-  r.stop_when_consistency_worsens = settings.stop_rule < 0 ? automatic_input : settings.stop_rule == 1;
+  // Automatic switches: keep the input maps when they are given, stop early when they are automatic.
+  r.keep_consistent_input_maps = resolve_switch(settings.keep_consistent_input_maps, !automatic_input);
+  r.stop_when_consistency_worsens = resolve_switch(settings.stop_rule, automatic_input);
   return smc::refine_coupled_maps<Concurrency>(*a.shape, *b.shape, map_12, map_21, refinement_parameters(r, visitor));
 }
 

@@ -19,6 +19,16 @@ const char* oracle_name(smc::Distance_oracle_type t)
 
 namespace {
 
+/// An automatic switch (see Settings): "auto" -> -1, `off` -> 0, `on` -> 1.
+int parse_automatic_switch(const std::string& option, const std::string& text, const char* off, const char* on)
+{
+  const int c = parse_choice(option, text, {off, on, "auto"});
+  return c == 2 ? -1 : c;
+}
+
+/// The JSON value of an automatic switch.
+std::string automatic_switch_text(int choice) { return choice < 0 ? "auto" : on_off(choice == 1); }
+
 std::string fits_text(const std::vector<smc::internal::Fit_candidate>& fits)
 {
   std::string s;
@@ -76,17 +86,13 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           "grows; none: run every outer iteration (the most consistent maps are returned either way); auto: "
           "consistency for automatic initial maps (no refined iterate is more consistent than they are), none for "
           "given ones",
-          "auto", [&s](const std::string& v) {
-            const int c = parse_choice("--stop-rule", v, {"none", "consistency", "auto"});
-            s.stop_rule = c == 2 ? -1 : c;
-          });
+          "auto", [&s](const std::string& v) { s.stop_rule = parse_automatic_switch("--stop-rule", v, "none", "consistency"); });
   p.value("--keep-input", "auto|on|off",
           "on: return the input maps unchanged when no refined iterate is more consistent (the paper's rule); "
           "off: return the most consistent refined iterate; auto: on for given initial maps, off for automatic "
           "ones (consistent by construction)",
           "on", [&s](const std::string& v) {
-            s.keep_consistent_input_maps = parse_choice("--keep-input", v, {"off", "on", "auto"});
-            if(s.keep_consistent_input_maps == 2) s.keep_consistent_input_maps = -1;
+            s.keep_consistent_input_maps = parse_automatic_switch("--keep-input", v, "off", "on");
           });
   p.value("--trws-iterations", "N", "TRW-S iterations per MRF solve",
           std::to_string(d.refinement.trws_number_of_iterations),
@@ -237,11 +243,8 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
       .value("use_coupling", r.use_coupling)
       .value("use_neighbor_matches", r.use_neighbor_matches)
       .value("pairwise_rings", r.pairwise_rings)
-      .value("stop_when_consistency_worsens", s.stop_rule < 0 ? std::string("auto")
-                                                              : std::string(s.stop_rule ? "on" : "off"))
-      .value("keep_consistent_input_maps", s.keep_consistent_input_maps < 0
-                                                ? std::string("auto")
-                                                : std::string(s.keep_consistent_input_maps ? "on" : "off"))
+      .value("stop_when_consistency_worsens", automatic_switch_text(s.stop_rule))
+      .value("keep_consistent_input_maps", automatic_switch_text(s.keep_consistent_input_maps))
       .value("trws_number_of_iterations", r.trws_number_of_iterations)
       .value("trws_relative_tolerance", r.trws_relative_tolerance)
       .end_object();

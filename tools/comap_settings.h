@@ -37,6 +37,10 @@ struct Settings
   int stop_rule = -1;
 };
 
+/// The value of an automatic switch of Settings (1 on, 0 off, -1 automatic) for initial maps that
+/// are automatic or given: `when_automatic` when the switch is automatic.
+inline bool resolve_switch(int choice, bool when_automatic) { return choice < 0 ? when_automatic : choice == 1; }
+
 /// Registers the options of every algorithm parameter (refinement, shape preparation and, when
 /// `with_initialization`, automatic initialisation) on `parser`, writing into `settings`.
 void add_algorithm_options(Option_parser& parser, Settings& settings, bool with_initialization);
