@@ -224,10 +224,32 @@ BOOST_AUTO_TEST_CASE(distortion_ranks_a_swapped_limb_below_the_true_map)
   const smci::Initialization_samples samples = smci::initialization_samples(m1, 0, 100);
   const double s1 = std::sqrt(m1.total_area), s2 = std::sqrt(m2.total_area);
   const Eigen::MatrixXd d1 = smci::pairwise_geodesic_distances(g1, samples.distortion_vertices, s1);
-  auto distortion = [&](const std::vector<std::size_t>& map) {
+  auto images_of = [&](const std::vector<std::size_t>& map) {
     std::vector<int> images;
     for(int v : samples.distortion_vertices) images.push_back(int(map[v]));
-    return smci::map_distortion(d1, g2, images, s2);
+    return images;
+  };
+  // The images of the three maps in one distance table, as the selection does. Its distances must
+  // be exactly those of separate fast marching runs from each image of one map.
+  std::vector<int> all;
+  const std::vector<std::size_t>* maps[] = {&f.pair.gt_12, &swapped, &flipped};
+  for(const std::vector<std::size_t>* map : maps)
+  {
+    const std::vector<int> images = images_of(*map);
+    all.insert(all.end(), images.begin(), images.end());
+  }
+  smci::Vertex_set_distances table;
+  table.compute<CGAL::Sequential_tag>(g2, all, s2);
+  BOOST_TEST(table.size() < all.size());  // the maps share images
+  auto distortion = [&](const std::vector<std::size_t>& map) {
+    const std::vector<int> images = images_of(map);
+    const Eigen::MatrixXd direct = smci::pairwise_geodesic_distances(g2, images, s2);
+    std::size_t differ = 0;
+    for(std::size_t i = 0; i < images.size(); ++i)
+      for(std::size_t j = 0; j < images.size(); ++j)
+        if(table.distance(images[i], images[j]) != direct(Eigen::Index(i), Eigen::Index(j))) ++differ;
+    BOOST_TEST(differ == 0u);
+    return smci::map_distortion(d1, table, images);
   };
   const double e_true = distortion(f.pair.gt_12), e_swapped = distortion(swapped), e_flipped = distortion(flipped);
   BOOST_TEST_MESSAGE("distortion: true map " << e_true << ", one arm swapped " << e_swapped << ", mirror "

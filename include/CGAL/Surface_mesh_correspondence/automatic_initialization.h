@@ -25,6 +25,7 @@
 #include <CGAL/Surface_mesh_correspondence/wave_kernel_signature.h>
 #include <CGAL/Surface_mesh_correspondence/zoomout.h>
 
+#include <CGAL/assertions.h>
 #include <CGAL/tags.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
@@ -39,6 +40,7 @@
 #include <cmath>
 #include <cstddef>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -556,14 +558,60 @@ inline Eigen::MatrixXd pairwise_geodesic_distances(const Fast_marching_geometry&
   return d;
 }
 
+/// Geodesic distances between the vertices of a set (fast marching from each one, stopped when
+/// the whole set is accepted), divided by `scale`. The distortion scores of many maps whose sample
+/// images are drawn from the set are then lookups: the fits of one pass share most of their images,
+/// so this needs far fewer fast marching runs than one run per image and map. Accepted values are
+/// final, so the distances equal those of separate runs.
+class Vertex_set_distances
+{
+public:
+  template <typename ConcurrencyTag>
+  void compute(const Fast_marching_geometry& g, std::vector<int> vertices, double scale)
+  {
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    vertices_ = std::move(vertices);
+    const std::size_t q = vertices_.size();
+    distances_.resize(Eigen::Index(q), Eigen::Index(q));
+    parallel_for_ranges<ConcurrencyTag>(q, [&](std::size_t begin, std::size_t end) {
+      Fast_marching_workspace w(g);
+      for(std::size_t i = begin; i < end; ++i)
+      {
+        w.run(&vertices_[i], 1, std::numeric_limits<double>::infinity(), vertices_.data(), q);
+        for(std::size_t j = 0; j < q; ++j) distances_(Eigen::Index(j), Eigen::Index(i)) = w.distance(vertices_[j]) / scale;
+      }
+    });
+  }
+
+  std::size_t size() const { return vertices_.size(); }
+
+  /// The distance from `from` to `to` (fast marching started at `from`), both in the set.
+  double distance(int from, int to) const { return distances_(position(to), position(from)); }
+
+private:
+  Eigen::Index position(int v) const
+  {
+    const auto it = std::lower_bound(vertices_.begin(), vertices_.end(), v);
+    CGAL_assertion(it != vertices_.end() && *it == v);
+    return Eigen::Index(it - vertices_.begin());
+  }
+
+  std::vector<int> vertices_;
+  Eigen::MatrixXd distances_;  // column i: the run from vertices_[i]
+};
+
 /// Mean geodesic distortion of a map on samples: the mean over pairs (i, j) of
 /// |d_S(s_i, s_j) - d_T(T(s_i), T(s_j))|, distances divided by the square roots of the areas.
-/// `source_distances` are the source's (pairwise_geodesic_distances()), `images` the T(s_i).
-inline double map_distortion(const Eigen::MatrixXd& source_distances, const Fast_marching_geometry& target,
-                             const std::vector<int>& images, double target_scale)
+/// `source_distances` are the source's (pairwise_geodesic_distances()), `images` the T(s_i), all
+/// in `target_distances`.
+inline double map_distortion(const Eigen::MatrixXd& source_distances, const Vertex_set_distances& target_distances,
+                             const std::vector<int>& images)
 {
-  const Eigen::MatrixXd d = pairwise_geodesic_distances(target, images, target_scale);
-  const Eigen::Index q = d.rows();
+  const Eigen::Index q = Eigen::Index(images.size());
+  Eigen::MatrixXd d(q, q);
+  for(Eigen::Index i = 0; i < q; ++i)
+    for(Eigen::Index j = 0; j < q; ++j) d(i, j) = target_distances.distance(images[i], images[j]);
   return q < 2 ? 0.0 : (d - source_distances).cwiseAbs().sum() / double(q * (q - 1));
 }
 
@@ -593,6 +641,25 @@ inline void check_initialization_shape(const Initialization_shape& shape, int k,
                                   " eigenpairs, fewer than zoomout_final_size = " + std::to_string(k));
 }
 
+/// The samples of one mesh that every pass of the initialisation uses (they do not depend on the
+/// landmarks): the ZoomOut and distortion samples, the fast marching geometry and the pairwise
+/// distances of the distortion samples.
+struct Initialization_sampling
+{
+  Initialization_samples samples;
+  Fast_marching_geometry geodesics;
+  Eigen::MatrixXd sample_distances;
+};
+
+/// The samplings of both meshes, computed by the first pass and reused by the repair passes
+/// (recomputed when the sample counts change).
+struct Initialization_pass_cache
+{
+  bool ready = false;
+  int number_of_samples = 0, distortion_count = 0;
+  Initialization_sampling first, second;
+};
+
 /// Runs a and b, concurrently with Parallel_tag.
 template <typename ConcurrencyTag, typename A, typename B>
 void invoke_both(const A& a, const B& b)
@@ -616,7 +683,8 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
                                                        const Initialization_shape& shape2,
                                                        const Initialization_settings& s,
                                                        std::vector<std::size_t>& map_12,
-                                                       std::vector<std::size_t>& map_21)
+                                                       std::vector<std::size_t>& map_21,
+                                                       Initialization_pass_cache* pass_cache = nullptr)
 {
   typedef std::chrono::steady_clock Clock;
   auto seconds_since = [](Clock::time_point t) {
@@ -725,20 +793,29 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
                                                   operator_columns, s);
       });
 
-  // Samples for the ZoomOut iterations and the ZoomOut features (weighted descriptors).
-  Initialization_samples samples1, samples2;
-  Fast_marching_geometry geodesics1, geodesics2;
-  Eigen::MatrixXd sample_distances1, sample_distances2;
+  // Samples for the ZoomOut iterations and the distortion score (shared by all passes).
   const int distortion_count = s.select_by_distortion ? s.distortion_samples : 0;
-  auto prepare_samples = [&](const Indexed_mesh& m, double area, Initialization_samples& samples,
-                             Fast_marching_geometry& g, Eigen::MatrixXd& distances) {
-    samples = initialization_samples(m, s.zoomout_number_of_samples, distortion_count);
-    if(distortion_count <= 0) return;
-    g.build(m);
-    distances = pairwise_geodesic_distances(g, samples.distortion_vertices, std::sqrt(area));
-  };
-  invoke_both<ConcurrencyTag>([&] { prepare_samples(m1, A1, samples1, geodesics1, sample_distances1); },
-                              [&] { prepare_samples(m2, A2, samples2, geodesics2, sample_distances2); });
+  Initialization_pass_cache own_cache;
+  Initialization_pass_cache& cache = pass_cache ? *pass_cache : own_cache;
+  if(!cache.ready || cache.number_of_samples != s.zoomout_number_of_samples ||
+     cache.distortion_count != distortion_count)
+  {
+    auto prepare_samples = [&](const Indexed_mesh& m, double area, Initialization_sampling& out) {
+      out.samples = initialization_samples(m, s.zoomout_number_of_samples, distortion_count);
+      if(distortion_count <= 0) return;
+      out.geodesics.build(m);
+      out.sample_distances = pairwise_geodesic_distances(out.geodesics, out.samples.distortion_vertices, std::sqrt(area));
+    };
+    invoke_both<ConcurrencyTag>([&] { prepare_samples(m1, A1, cache.first); },
+                                [&] { prepare_samples(m2, A2, cache.second); });
+    cache.ready = true;
+    cache.number_of_samples = s.zoomout_number_of_samples;
+    cache.distortion_count = distortion_count;
+  }
+  const Initialization_samples& samples1 = cache.first.samples;
+  const Initialization_samples& samples2 = cache.second.samples;
+  const Eigen::MatrixXd& sample_distances1 = cache.first.sample_distances;
+  const Eigen::MatrixXd& sample_distances2 = cache.second.sample_distances;
   const std::vector<int>& rows1 = samples1.rows;
   const std::vector<int>& rows2 = samples2.rows;
   Eigen::MatrixXd features1, features2;
@@ -783,6 +860,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
     int sign;
     int inverse_of;               // -1: a fit; else the index of the fit whose maps it inverts
     Eigen::MatrixXd C12, C21;     // after the short ZoomOut
+    std::vector<int> images12, images21;  // of the distortion samples
     double score12 = 0, score21 = 0;
   };
   std::vector<Candidate> candidates;
@@ -791,7 +869,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
                                                                : std::vector<int>{1, -1};
   for(int sign : signs)
     for(const Fit_candidate& c : s.candidates)
-      if(c.basis_size <= kf) candidates.push_back({c, sign, -1, {}, {}});
+      if(c.basis_size <= kf) candidates.push_back({c, sign, -1, {}, {}, {}, {}});
   const int k_select = std::min(std::max(s.selection_size, kmax), kf);
   Zoomout_settings select_settings = zs;
   select_settings.final_size = k_select;
@@ -802,7 +880,8 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
       total += (Da.row(rows.empty() ? int(r) : rows[r]) - Db.row(map_rows[r])).cwiseAbs2().dot(column_weights);
     return total / (double(map_rows.size()) * column_weights.sum());
   };
-  // Short ZoomOut of both maps on the samples, then the scores of the sample matches.
+  // Short ZoomOut of both maps on the samples, then the descriptor scores of the sample matches
+  // (or the images of the distortion samples, scored once all candidates are known).
   auto zoom_and_score = [&](Candidate& c, const Eigen::MatrixXd& C12, const Eigen::MatrixXd& C21) {
     std::vector<int> t12, t21;
     c.C12 = zoomout_refine<CGAL::Sequential_tag>(basis1, mass1, basis2, C12, select_settings, rows1, landmarks,
@@ -811,13 +890,8 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
                                                  t21, Zoomout_features(), true);
     if(s.select_by_distortion)
     {
-      auto images = [](const Initialization_samples& samples, const std::vector<int>& t) {
-        std::vector<int> out;
-        for(int r : samples.distortion_rows) out.push_back(t[r]);
-        return out;
-      };
-      c.score12 = map_distortion(sample_distances1, geodesics2, images(samples1, t12), std::sqrt(A2));
-      c.score21 = map_distortion(sample_distances2, geodesics1, images(samples2, t21), std::sqrt(A1));
+      for(int r : samples1.distortion_rows) c.images12.push_back(t12[r]);
+      for(int r : samples2.distortion_rows) c.images21.push_back(t21[r]);
     }
     else
     {
@@ -857,11 +931,29 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
     // other does not.
     const std::size_t fits = candidates.size();
     for(std::size_t i = 0; i < fits; ++i)
-      candidates.push_back({candidates[i].config, candidates[i].sign, int(i), {}, {}});
+      candidates.push_back({candidates[i].config, candidates[i].sign, int(i), {}, {}, {}, {}});
     parallel_for<ConcurrencyTag>(fits, [&](std::size_t i) {
       Candidate& c = candidates[fits + i];
       zoom_and_score(c, candidates[i].C21.transpose(), candidates[i].C12.transpose());
     });
+    // The distortion scores: geodesic distances between all the images, then lookups.
+    std::vector<int> all12, all21;
+    for(const Candidate& c : candidates)
+    {
+      all12.insert(all12.end(), c.images12.begin(), c.images12.end());
+      all21.insert(all21.end(), c.images21.begin(), c.images21.end());
+    }
+    Vertex_set_distances distances2, distances1;
+    distances2.compute<ConcurrencyTag>(cache.second.geodesics, std::move(all12), std::sqrt(A2));
+    distances1.compute<ConcurrencyTag>(cache.first.geodesics, std::move(all21), std::sqrt(A1));
+    for(Candidate& c : candidates)
+    {
+      c.score12 = map_distortion(sample_distances1, distances2, c.images12);
+      c.score21 = map_distortion(sample_distances2, distances1, c.images21);
+    }
+    if(s.verbose)
+      std::cerr << "  distortion scores: " << distances2.size() << " and " << distances1.size()
+                << " distinct sample images\n";
   }
   std::size_t best12 = 0, best21 = 0;
   for(std::size_t i = 1; i < candidates.size(); ++i)
@@ -980,12 +1072,16 @@ inline Pair_tears pair_tears(const Indexed_mesh& m1, const Indexed_mesh& m2, con
 /// to the landmarks, in the orientation `orientation_sign` (that of the maps, relative to the
 /// embeddings); the landmark descriptors then tell the swapped parts apart. New maps replace the
 /// old ones only when they are less torn. Returns the result of the pass whose maps were kept, or
-/// `result` (the one of the given maps) updated with the torn fractions.
+/// `result` (the one of the given maps) updated with the torn fractions. `pass_cache`: the
+/// samplings of the pass that computed the maps, if any (see single_pass_initial_maps()).
 template <typename ConcurrencyTag>
 Automatic_initialization_result repair_torn_maps(const Initialization_shape& shape1, const Initialization_shape& shape2,
                                                  const Initialization_settings& s, std::vector<std::size_t>& map_12,
-                                                 std::vector<std::size_t>& map_21, Automatic_initialization_result result)
+                                                 std::vector<std::size_t>& map_21, Automatic_initialization_result result,
+                                                 Initialization_pass_cache* pass_cache = nullptr)
 {
+  Initialization_pass_cache own_cache;
+  if(!pass_cache) pass_cache = &own_cache;
   const Indexed_mesh& m1 = *shape1.mesh;
   const Indexed_mesh& m2 = *shape2.mesh;
   Pair_tears tears = pair_tears(m1, m2, map_12, map_21, s.tear_threshold);
@@ -1004,7 +1100,7 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
     for(const auto& p : core_correspondences(m2, tears.back, map_21, s.tear_repair_landmarks))
       repair.landmarks.emplace_back(std::size_t(p.second), std::size_t(p.first));
     std::vector<std::size_t> r12, r21;
-    Automatic_initialization_result r = single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, repair, r12, r21);
+    Automatic_initialization_result r = single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, repair, r12, r21, pass_cache);
     const Pair_tears repaired = pair_tears(m1, m2, r12, r21, s.tear_threshold);
     functional_map_seconds += r.functional_map_seconds;
     zoomout_seconds += r.zoomout_seconds;
@@ -1038,9 +1134,11 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
                                                        std::vector<std::size_t>& map_21)
 {
   const auto start = std::chrono::steady_clock::now();
+  Initialization_pass_cache cache;
   const Automatic_initialization_result first =
-      single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21);
-  Automatic_initialization_result result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first);
+      single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, &cache);
+  Automatic_initialization_result result =
+      repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first, &cache);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
