@@ -141,7 +141,8 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   BOOST_TEST(smc::number_of_inconsistent_vertices(f12, f21) <=
              smc::number_of_inconsistent_vertices(read_map(in_scratch("b12.map"), 1), read_map(in_scratch("b21.map"), 1)));
   BOOST_TEST(read_text(in_scratch("full.json")).find("\"initialization\"") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"keep_consistent_input_maps\": \"on\"") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("full.json")).find("\"keep_input\": \"on\"") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("full.json")).find("\"keep_consistent_input_maps\": true") != std::string::npos);
 
   // --stop-rule auto (the default) is the Eq. (4) early stop for automatic maps: the same maps as
   // --stop-rule consistency; the whole schedule (--stop-rule none, 2 outer iterations with
@@ -154,13 +155,17 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   };
   const auto early = run(" --stop-rule consistency", "early"), all = run(" --stop-rule none", "all");
   BOOST_TEST((early.first == f12 && early.second == f21));
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"stop_when_consistency_worsens\": \"auto\"") != std::string::npos);
+  // The settings record the choice and what it means for these maps.
+  BOOST_TEST(read_text(in_scratch("full.json")).find("\"stop_rule\": \"auto\"") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("full.json")).find("\"stop_when_consistency_worsens\": true") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("all.json")).find("\"stop_rule\": \"none\"") != std::string::npos);
   BOOST_TEST(read_text(in_scratch("all.json")).find("\"outer_iterations\": 2,") != std::string::npos);
   // The first refined iterate is less consistent than these automatic maps, so the default
   // stops after it; the same maps given as initial maps run the whole schedule by default.
   BOOST_TEST(read_text(in_scratch("full.json")).find("\"outer_iterations\": 1,") != std::string::npos);
   run(" --init-12 " + in_scratch("b12.map") + " --init-21 " + in_scratch("b21.map"), "given");
   BOOST_TEST(read_text(in_scratch("given.json")).find("\"outer_iterations\": 2,") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("given.json")).find("\"stop_when_consistency_worsens\": false") != std::string::npos);
   BOOST_TEST(smc::number_of_inconsistent_vertices(all.first, all.second) <=
              smc::number_of_inconsistent_vertices(f12, f21));
 }

@@ -11,6 +11,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -383,6 +384,85 @@ BOOST_AUTO_TEST_CASE(tear_repair_restores_swapped_limbs)
   bad21[3] = num_vertices(f.pair.m1);
   std::vector<std::size_t> ok12 = s.map_12;
   BOOST_CHECK_THROW(smc::repair_torn_maps(f.pair.m1, f.pair.m2, ok12, bad21), smc::Invalid_map_error);
+}
+
+BOOST_AUTO_TEST_CASE(isometric_core_leaves_out_swapped_limbs)
+{
+  // The samples whose pairwise geodesic distances a map preserves: all of them (but a few) for the
+  // true map, none on a swapped arm for the map that swaps the arms.
+  namespace smci = smc::internal;
+  const Pair_fixture& f = symmetric();
+  const Swapped_arms s = swapped_arms(f);
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
+  smci::Fast_marching_geometry g1, g2;
+  g1.build(m1);
+  g2.build(m2);
+  const smci::Initialization_samples samples = smci::initialization_samples(m1, 0, 100);
+  const double s1 = std::sqrt(m1.total_area), s2 = std::sqrt(m2.total_area);
+  const Eigen::MatrixXd d1 = smci::pairwise_geodesic_distances(g1, samples.distortion_vertices, s1);
+  auto core_of = [&](const std::vector<std::size_t>& map) {
+    std::vector<int> images;
+    for(int v : samples.distortion_vertices) images.push_back(int(map[v]));
+    smci::Vertex_set_distances table;
+    table.compute<CGAL::Sequential_tag>(g2, images, s2);
+    return smci::distortion_core(d1, table, images, 0.04, 0.9);
+  };
+  const std::vector<int> true_core = core_of(f.pair.gt_12), swapped_core = core_of(s.map_12);
+  std::size_t arm_samples = 0, arm_samples_in_core = 0;
+  for(int v : samples.distortion_vertices) arm_samples += s.arm1[v];
+  for(int i : swapped_core) arm_samples_in_core += s.arm1[samples.distortion_vertices[i]];
+  BOOST_TEST_MESSAGE("isometric cores: true map " << true_core.size() << ", swapped arms " << swapped_core.size()
+                                                  << " of 100 samples (" << arm_samples << " on the arms, "
+                                                  << arm_samples_in_core << " of them in the core)");
+  BOOST_TEST(true_core.size() >= 90u);
+  BOOST_TEST(arm_samples >= 4u);
+  BOOST_TEST(arm_samples_in_core == 0u);
+  BOOST_TEST(swapped_core.size() >= 50u);
+  BOOST_TEST(std::is_sorted(swapped_core.begin(), swapped_core.end()));  // farthest-point order
+  // Any tolerance above every distortion keeps every sample; agreement 1 with a tiny tolerance
+  // keeps a set in which all pairs agree (here the samples that the map sends to one point cannot
+  // exist, so at most one sample).
+  smci::Vertex_set_distances table;
+  std::vector<int> images;
+  for(int v : samples.distortion_vertices) images.push_back(int(s.map_12[v]));
+  table.compute<CGAL::Sequential_tag>(g2, images, s2);
+  BOOST_TEST(smci::distortion_core(d1, table, images, 10.0, 1.0).size() == 100u);
+  BOOST_TEST(smci::distortion_core(d1, table, images, 1e-12, 1.0).size() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(distortion_repair_restores_swapped_limbs)
+{
+  // The distortion repair alone (no tear repair) puts the swapped arms back from landmarks in the
+  // isometric core, and leaves nearly isometric maps alone.
+  const Pair_fixture& f = symmetric();
+  const Swapped_arms s = swapped_arms(f);
+  std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21;
+  const smc::Automatic_initialization_result r = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, r12, r21, params::number_of_distortion_repair_passes(1, params::number_of_repair_passes(0)));
+  const double before = f.error_12(s.map_12, f.pair.gt_12), after = f.error_12(r12, f.pair.gt_12);
+  BOOST_TEST_MESSAGE("swapped arms, distortion repair: error " << before << " -> " << after << " ("
+                                                               << f.error_21(s.map_21, f.pair.gt_21) << " -> "
+                                                               << f.error_21(r21, f.pair.gt_21) << "), distortion "
+                                                               << r.sample_distortion_before << " -> "
+                                                               << r.sample_distortion << ", " << r.passes << " pass(es)");
+  BOOST_TEST(r.repair_passes == 0);
+  BOOST_TEST(r.distortion_repair_passes == 1);
+  BOOST_TEST(r.passes == 1);
+  BOOST_TEST(r.sample_distortion < r.sample_distortion_before);
+  BOOST_TEST(r.sample_distortion_before > 0.035);
+  BOOST_TEST(after < 0.015);
+  BOOST_TEST(f.error_21(r21, f.pair.gt_21) < 0.015);
+  std::vector<std::size_t> t12 = f.pair.gt_12, t21 = f.pair.gt_21;
+  const smc::Automatic_initialization_result t = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, t12, t21, params::number_of_distortion_repair_passes(1, params::number_of_repair_passes(0)));
+  BOOST_TEST(t.distortion_repair_passes == 0);
+  BOOST_TEST(t.passes == 0);
+  BOOST_TEST(t.sample_distortion_before <= 0.035);
+  BOOST_TEST(t12 == f.pair.gt_12);
+  BOOST_TEST(t21 == f.pair.gt_21);
+  BOOST_CHECK_THROW(smc::repair_torn_maps(f.pair.m1, f.pair.m2, t12, t21,
+                                          params::number_of_distortion_repair_passes(-1)),
+                    smc::Invalid_parameter_error);
 }
 
 BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)

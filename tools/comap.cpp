@@ -208,7 +208,7 @@ int match(int argc, char** argv)
     json.begin_object().value("command", "match").value("index_base", index_base);
     write_preparation(json, "source", *s1);
     write_preparation(json, "target", *s2);
-    write_settings(json, "settings", settings, initialization_data);
+    write_settings(json, "settings", settings, initialization_data, automatic);
     if(automatic)
       write_initialization(json, "initialization", initialization);
     else

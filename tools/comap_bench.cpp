@@ -123,6 +123,8 @@ struct Pair_result
   int outer_iterations = 0, kept_iterations = 0;
   int repair_passes = 0;                          ///< tear repair passes kept (automatic maps, or --repair)
   double torn_fraction_before = 0, torn_fraction = 0;
+  int distortion_repair_passes = 0;               ///< distortion repair passes kept
+  double sample_distortion_before = 0, sample_distortion = 0;
   std::string termination;
   double preprocessing_seconds = 0, initialization_seconds = 0, data_preparation_seconds = 0, trws_seconds = 0,
          refinement_seconds = 0, evaluation_seconds = 0;
@@ -133,6 +135,9 @@ struct Pair_result
     repair_passes = init.repair_passes;
     torn_fraction_before = init.torn_fraction_before;
     torn_fraction = init.torn_fraction;
+    distortion_repair_passes = init.distortion_repair_passes;
+    sample_distortion_before = init.sample_distortion_before;
+    sample_distortion = init.sample_distortion;
   }
 };
 
@@ -490,7 +495,8 @@ int run_bench(int argc, char** argv)
            "refined_sym_error,initial_cycle_error,refined_cycle_error,initial_fixed_points,refined_fixed_points,"
            "initial_coverage,refined_coverage,inconsistent_before,inconsistent_after,outer_iterations,"
            "kept_iterations,termination,preprocessing_seconds,initialization_seconds,data_preparation_seconds,"
-           "trws_seconds,refinement_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction\n";
+           "trws_seconds,refinement_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
+           "distortion_repair_passes,sample_distortion_before,sample_distortion\n";
     for(const Pair_result& r : results)
     {
       if(!r.ok)
@@ -524,7 +530,8 @@ int run_bench(int argc, char** argv)
             << shortest(r.initialization_seconds) << "," << shortest(r.data_preparation_seconds) << ","
             << shortest(r.trws_seconds) << "," << shortest(r.refinement_seconds) << ","
             << shortest(r.evaluation_seconds) << "," << r.repair_passes << "," << shortest(r.torn_fraction_before)
-            << "," << shortest(r.torn_fraction) << "\n";
+            << "," << shortest(r.torn_fraction) << "," << r.distortion_repair_passes << ","
+            << shortest(r.sample_distortion_before) << "," << shortest(r.sample_distortion) << "\n";
       }
     }
   }
@@ -614,7 +621,7 @@ int run_bench(int argc, char** argv)
         .value("pairs", succeeded)
         .value("maps", 2 * succeeded)
         .value("failed_pairs", failed);
-    write_settings(json, "settings", settings, automatic || o.repair);
+    write_settings(json, "settings", settings, automatic || o.repair, automatic);
     write_aggregate(json, "initial", initial);
     write_aggregate(json, "refined", refined);
     const double n = succeeded > 0 ? static_cast<double>(succeeded) : 1.0;

@@ -349,7 +349,7 @@ int run_demo(int argc, char** argv)
     Json_writer json(s);
     json.begin_object().value("source", source_name).value("target", target_name);
     json.value("mean_edge_distortion", distortion.first).value("maximum_edge_distortion", distortion.second);
-    write_settings(json, "settings", settings, true);
+    write_settings(json, "settings", settings, true, true);
     write_preparation(json, "source_preparation", *a);
     write_preparation(json, "target_preparation", *b);
     write_initialization(json, "initialization", init);

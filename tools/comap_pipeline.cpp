@@ -107,7 +107,11 @@ std::string initialization_summary(const smc::Automatic_initialization_result& r
   return "torn fraction " + percent(r.torn_fraction_before) +
          (r.repair_passes > 0 ? " -> " + percent(r.torn_fraction) + " after " + std::to_string(r.repair_passes) +
                                     " repair pass(es)"
-                              : std::string(" (kept)"));
+                              : std::string(" (kept)")) +
+         ", sample distortion " + fixed(r.sample_distortion_before, 4) +
+         (r.distortion_repair_passes > 0 ? " -> " + fixed(r.sample_distortion, 4) + " after " +
+                                               std::to_string(r.distortion_repair_passes) + " distortion repair pass(es)"
+                                         : std::string(" (kept)"));
 }
 
 namespace {
@@ -184,6 +188,9 @@ void write_initialization(Json_writer& json, const std::string& key, const smc::
       .value("repair_passes", r.repair_passes)
       .value("torn_fraction_before", r.torn_fraction_before)
       .value("torn_fraction", r.torn_fraction)
+      .value("distortion_repair_passes", r.distortion_repair_passes)
+      .value("sample_distortion_before", r.sample_distortion_before)
+      .value("sample_distortion", r.sample_distortion)
       .end_object();
 }
 

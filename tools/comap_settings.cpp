@@ -26,8 +26,11 @@ int parse_automatic_switch(const std::string& option, const std::string& text, c
   return c == 2 ? -1 : c;
 }
 
-/// The JSON value of an automatic switch.
-std::string automatic_switch_text(int choice) { return choice < 0 ? "auto" : on_off(choice == 1); }
+/// The JSON value of an automatic switch: "auto" or the option's word for the choice.
+std::string automatic_switch_text(int choice, const char* off, const char* on)
+{
+  return choice < 0 ? "auto" : choice == 1 ? on : off;
+}
 
 std::string fits_text(const std::vector<smc::internal::Fit_candidate>& fits)
 {
@@ -203,6 +206,11 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           "recomputed with landmarks from their core (0: no repair)",
           std::to_string(di.tear_repair_passes),
           [&in](const std::string& v) { in.tear_repair_passes = parse_int("--init-repair-passes", v, 0, 100); });
+  p.value("--init-distortion-repair", "N", "distortion repair passes at most: the maps are recomputed with "
+          "landmarks from their isometric core (the samples whose geodesic distances they preserve) and kept when "
+          "they distort distances less (0: none)",
+          std::to_string(di.distortion_repair_passes),
+          [&in](const std::string& v) { in.distortion_repair_passes = parse_int("--init-distortion-repair", v, 0, 100); });
   p.value("--init-tear-threshold", "X", "a source edge is torn when its images are this far apart (relative to "
           "sqrt(area) of the target)",
           shortest(di.tear_threshold),
@@ -231,7 +239,8 @@ void check_settings(const Settings& s, bool with_initialization)
   }
 }
 
-void write_settings(Json_writer& json, const std::string& key, const Settings& s, bool with_initialization)
+void write_settings(Json_writer& json, const std::string& key, const Settings& s, bool with_initialization,
+                    bool automatic_input)
 {
   json.begin_object(key);
   const smc::Refinement_settings& r = s.refinement;
@@ -243,8 +252,10 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
       .value("use_coupling", r.use_coupling)
       .value("use_neighbor_matches", r.use_neighbor_matches)
       .value("pairwise_rings", r.pairwise_rings)
-      .value("stop_when_consistency_worsens", automatic_switch_text(s.stop_rule))
-      .value("keep_consistent_input_maps", automatic_switch_text(s.keep_consistent_input_maps))
+      .value("stop_rule", automatic_switch_text(s.stop_rule, "none", "consistency"))
+      .value("stop_when_consistency_worsens", resolve_switch(s.stop_rule, automatic_input))
+      .value("keep_input", automatic_switch_text(s.keep_consistent_input_maps, "off", "on"))
+      .value("keep_consistent_input_maps", resolve_switch(s.keep_consistent_input_maps, !automatic_input))
       .value("trws_number_of_iterations", r.trws_number_of_iterations)
       .value("trws_relative_tolerance", r.trws_relative_tolerance)
       .end_object();

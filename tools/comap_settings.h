@@ -48,8 +48,11 @@ void add_algorithm_options(Option_parser& parser, Settings& settings, bool with_
 /// Checks the settings with the library's own checks; throws Usage_error with its message.
 void check_settings(const Settings& settings, bool with_initialization);
 
-/// Writes the settings as a JSON object named `key`.
-void write_settings(Json_writer& json, const std::string& key, const Settings& settings, bool with_initialization);
+/// Writes the settings as a JSON object named `key`; the automatic switches appear as chosen
+/// ("auto" or the option's word) and as resolved for maps that are automatic (`automatic_input`)
+/// or given.
+void write_settings(Json_writer& json, const std::string& key, const Settings& settings, bool with_initialization,
+                    bool automatic_input);
 
 const char* oracle_name(smc::Distance_oracle_type t);
 

@@ -86,6 +86,13 @@ struct Automatic_initialization_result
   /// directions) of the first maps and of the returned ones.
   int repair_passes = 0;
   double torn_fraction_before = 0, torn_fraction = 0;
+  /// Distortion repair (see automatic_initial_maps()): the passes whose maps were kept, and the
+  /// geodesic distortion of the sample maps (mean of both directions) before the distortion repair
+  /// and of the returned maps.
+  int distortion_repair_passes = 0;
+  double sample_distortion_before = 0, sample_distortion = 0;
+  /// Passes run in all (fits and ZoomOut: the first one and the repair passes, kept or not).
+  int passes = 0;
   /// The final functional maps (unit-area bases): C12 (k x k, pulls functions from mesh 2 back
   /// to mesh 1, the map of map_12) and C21.
   Eigen::MatrixXd functional_map_12, functional_map_21;
@@ -166,6 +173,28 @@ struct Initialization_settings
   double tear_min_fraction = 0.01;
   /// Landmarks sampled in the core of each map by a repair pass.
   int tear_repair_landmarks = 30;
+  // Distortion repair.
+  /// Distortion repair passes at most (0, the default: none; each pass costs about as much as the
+  /// first one): after the tear repair, the maps are recomputed with
+  /// landmarks from their isometric core (the largest set of samples whose pairwise geodesic
+  /// distances the map preserves, see distortion_core()), with all the fit configurations of the
+  /// first pass, and kept when they distort the sample distances less.
+  int distortion_repair_passes = 0;
+  /// Two samples agree when the map changes their geodesic distance by less than this (relative to
+  /// the square root of the areas)...
+  double distortion_core_tolerance = 0.04;
+  /// ... and the core is the largest set found in which every sample agrees with this fraction of
+  /// the others.
+  double distortion_core_agreement = 0.9;
+  /// Maps whose sample distortion (mean of both directions) is at most this are kept as they are.
+  double distortion_repair_threshold = 0.035;
+  /// New maps are kept only when their sample distortion is lower by at least this fraction: on
+  /// shapes whose poses stretch the surface the ground truth is not the most isometric map, and
+  /// small gains in isometry are as often losses in accuracy.
+  double distortion_repair_gain = 0.2;
+  /// Passes in all (the first one, tear repair and distortion repair): the distortion repair runs
+  /// only while this allows.
+  int maximum_passes = 3;
   /// The fit configurations of the repair passes (the landmarks constrain the fits, so fewer are
   /// needed); empty: those of the first pass.
   std::vector<Fit_candidate> repair_candidates{{20, 0.03, 0.3}, {40, 0.1, 1.0}};
@@ -207,6 +236,8 @@ Initialization_settings initialization_settings(const NamedParameters& np)
   s.tear_repair_passes = choose_parameter(get_parameter(np, internal_np::number_of_repair_passes),
                                           s.tear_repair_passes);
   s.tear_threshold = choose_parameter(get_parameter(np, internal_np::tear_threshold), s.tear_threshold);
+  s.distortion_repair_passes = choose_parameter(
+      get_parameter(np, internal_np::number_of_distortion_repair_passes), s.distortion_repair_passes);
   s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
   const auto& landmarks = get_parameter(np, internal_np::landmarks);
   if constexpr(!std::is_same<typename std::decay<decltype(landmarks)>::type,
@@ -249,7 +280,7 @@ inline void check_initialization_settings(const Initialization_settings& s)
     fail("zoomout_final_size = " + std::to_string(s.zoomout_final_size) +
          " must be at least spectral_basis_size = " + std::to_string(smallest));
   }
-  if(s.select_by_distortion && s.distortion_samples < 2)
+  if((s.select_by_distortion || s.distortion_repair_passes > 0) && s.distortion_samples < 2)
     fail("distortion_samples = " + std::to_string(s.distortion_samples) + " must be at least 2");
   if(s.zoomout_step < 1) fail("zoomout_step = " + std::to_string(s.zoomout_step) + " must be positive");
   if(s.number_of_eigenpairs != 0 && s.number_of_eigenpairs < s.zoomout_final_size)
@@ -264,6 +295,16 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(!(s.weights.laplacian >= 0) || !(s.weights.descriptor > 0)) fail("invalid functional map weights");
   if(s.landmark_orientation < -1 || s.landmark_orientation > 1) fail("landmark_orientation must be -1, 0 or 1");
   if(s.tear_repair_passes < 0) fail("tear_repair_passes must be non-negative");
+  if(s.distortion_repair_passes < 0) fail("distortion_repair_passes must be non-negative");
+  if(!(s.distortion_core_tolerance > 0) || !std::isfinite(s.distortion_core_tolerance))
+    fail("distortion_core_tolerance must be positive");
+  if(!(s.distortion_core_agreement > 0) || !(s.distortion_core_agreement <= 1))
+    fail("distortion_core_agreement must be in (0, 1]");
+  if(!(s.distortion_repair_threshold >= 0) || !std::isfinite(s.distortion_repair_threshold))
+    fail("distortion_repair_threshold must be non-negative");
+  if(s.maximum_passes < 1) fail("maximum_passes must be positive");
+  if(!(s.distortion_repair_gain >= 0) || !(s.distortion_repair_gain < 1))
+    fail("distortion_repair_gain must be in [0, 1)");
   if(!(s.tear_threshold > 0) || !std::isfinite(s.tear_threshold)) fail("tear_threshold must be positive");
   if(!(s.tear_min_fraction >= 0) || !(s.tear_min_fraction < 1)) fail("tear_min_fraction must be in [0, 1)");
   if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
@@ -615,6 +656,45 @@ inline double map_distortion(const Eigen::MatrixXd& source_distances, const Vert
   return q < 2 ? 0.0 : (d - source_distances).cwiseAbs().sum() / double(q * (q - 1));
 }
 
+/// The isometric core of a map on the distortion samples: two samples agree when the map changes
+/// their geodesic distance by less than `tolerance`; starting from all samples, the one that agrees
+/// with the smallest fraction of the others still in the set is removed (the first on ties) until
+/// every remaining sample agrees with at least `agreement` of them. A map that is right on one
+/// part of the shape and mirrored or turned on another (a half-body flip: continuous and without
+/// tears) keeps the samples of one part. Returns the positions of the core samples, in the
+/// samples' order (farthest-point order, so any prefix is spread out).
+inline std::vector<int> distortion_core(const Eigen::MatrixXd& source_distances, const Vertex_set_distances& target,
+                                        const std::vector<int>& images, double tolerance, double agreement)
+{
+  const int q = int(images.size());
+  std::vector<std::vector<char> > agree(std::size_t(q), std::vector<char>(std::size_t(q), 0));
+  std::vector<int> count(std::size_t(q), 0);  // agreeing samples still in the set
+  for(int i = 0; i < q; ++i)
+    for(int j = 0; j < q; ++j)
+      if(std::abs(target.distance(images[i], images[j]) - source_distances(i, j)) < tolerance)
+      {
+        agree[i][j] = 1;
+        ++count[i];
+      }
+  std::vector<char> in(std::size_t(q), 1);
+  int size = q;
+  while(size > 1)
+  {
+    int worst = -1;
+    for(int i = 0; i < q; ++i)
+      if(in[i] && (worst < 0 || count[i] < count[worst])) worst = i;
+    if(double(count[worst]) >= agreement * double(size)) break;
+    in[worst] = 0;
+    --size;
+    for(int i = 0; i < q; ++i)
+      if(agree[i][worst]) --count[i];
+  }
+  std::vector<int> core;
+  for(int i = 0; i < q; ++i)
+    if(in[i]) core.push_back(i);
+  return core;
+}
+
 /// Checks one shape against the settings.
 inline void check_initialization_shape(const Initialization_shape& shape, int k, const std::string& name)
 {
@@ -675,6 +755,28 @@ void invoke_both(const A& a, const B& b)
   b();
 }
 
+/// Fills `cache` with the samplings of both shapes, unless it holds them for these settings.
+template <typename ConcurrencyTag>
+void prepare_pass_cache(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                        const Initialization_settings& s, Initialization_pass_cache& cache)
+{
+  const int distortion_count = s.select_by_distortion || s.distortion_repair_passes > 0 ? s.distortion_samples : 0;
+  if(cache.ready && cache.number_of_samples == s.zoomout_number_of_samples && cache.distortion_count == distortion_count)
+    return;
+  auto prepare_samples = [&](const Initialization_shape& shape, Initialization_sampling& out) {
+    out.samples = initialization_samples(*shape.mesh, s.zoomout_number_of_samples, distortion_count);
+    if(distortion_count <= 0) return;
+    out.geodesics.build(*shape.mesh);
+    out.sample_distances = pairwise_geodesic_distances(out.geodesics, out.samples.distortion_vertices,
+                                                       std::sqrt(shape.spectrum->total_area()));
+  };
+  invoke_both<ConcurrencyTag>([&] { prepare_samples(shape1, cache.first); },
+                              [&] { prepare_samples(shape2, cache.second); });
+  cache.ready = true;
+  cache.number_of_samples = s.zoomout_number_of_samples;
+  cache.distortion_count = distortion_count;
+}
+
 /// One pass of automatic_initial_maps() on precomputed shapes (flat mesh, spectrum with at least
 /// zoomout_final_size eigenpairs, descriptors from initialization_descriptors() with the same
 /// settings): fits, selection and coupled ZoomOut, without the tear repair.
@@ -722,6 +824,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   for(const auto& l : landmarks) landmarks21.emplace_back(l.second, l.first);
 
   Automatic_initialization_result result;
+  result.passes = 1;
   result.final_basis_size = kf;
   const Laplace_beltrami_spectrum& S1 = *shape1.spectrum;
   const Laplace_beltrami_spectrum& S2 = *shape2.spectrum;
@@ -794,24 +897,9 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
       });
 
   // Samples for the ZoomOut iterations and the distortion score (shared by all passes).
-  const int distortion_count = s.select_by_distortion ? s.distortion_samples : 0;
   Initialization_pass_cache own_cache;
   Initialization_pass_cache& cache = pass_cache ? *pass_cache : own_cache;
-  if(!cache.ready || cache.number_of_samples != s.zoomout_number_of_samples ||
-     cache.distortion_count != distortion_count)
-  {
-    auto prepare_samples = [&](const Indexed_mesh& m, double area, Initialization_sampling& out) {
-      out.samples = initialization_samples(m, s.zoomout_number_of_samples, distortion_count);
-      if(distortion_count <= 0) return;
-      out.geodesics.build(m);
-      out.sample_distances = pairwise_geodesic_distances(out.geodesics, out.samples.distortion_vertices, std::sqrt(area));
-    };
-    invoke_both<ConcurrencyTag>([&] { prepare_samples(m1, A1, cache.first); },
-                                [&] { prepare_samples(m2, A2, cache.second); });
-    cache.ready = true;
-    cache.number_of_samples = s.zoomout_number_of_samples;
-    cache.distortion_count = distortion_count;
-  }
+  prepare_pass_cache<ConcurrencyTag>(shape1, shape2, s, cache);
   const Initialization_samples& samples1 = cache.first.samples;
   const Initialization_samples& samples2 = cache.second.samples;
   const Eigen::MatrixXd& sample_distances1 = cache.first.sample_distances;
@@ -1089,9 +1177,11 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
   // The orientation hypothesis of the maps, relative to the meshes' own orientations.
   const int mesh_sign = (signed_volume(m1) * signed_volume(m2) < 0) ? -1 : 1;
   double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
+  int passes = result.passes;
   for(int pass = 1; pass <= s.tear_repair_passes; ++pass)
   {
     if(std::max(tears.forth.torn_fraction, tears.back.torn_fraction) <= s.tear_min_fraction) break;
+    ++passes;
     Initialization_settings repair = s;
     repair.landmark_orientation = result.orientation_sign * mesh_sign;
     if(!s.repair_candidates.empty()) repair.candidates = s.repair_candidates;
@@ -1121,11 +1211,130 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
   }
   result.functional_map_seconds = functional_map_seconds;
   result.zoomout_seconds = zoomout_seconds;
+  result.passes = passes;
+  return result;
+}
+
+/// The geodesic distortion of a pair of maps on the distortion samples of both meshes (the mean of
+/// both directions, see map_distortion()); with `core_12` and `core_21` not null, also the
+/// isometric cores of both maps (distortion_core()).
+template <typename ConcurrencyTag>
+double pair_distortion(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                       const Initialization_settings& s, const Initialization_pass_cache& cache,
+                       const std::vector<std::size_t>& map_12, const std::vector<std::size_t>& map_21,
+                       std::vector<int>* core_12 = nullptr, std::vector<int>* core_21 = nullptr)
+{
+  std::vector<int> images12, images21;
+  for(int v : cache.first.samples.distortion_vertices) images12.push_back(int(map_12[std::size_t(v)]));
+  for(int v : cache.second.samples.distortion_vertices) images21.push_back(int(map_21[std::size_t(v)]));
+  Vertex_set_distances d2, d1;
+  invoke_both<ConcurrencyTag>(
+      [&] { d2.compute<ConcurrencyTag>(cache.second.geodesics, images12, std::sqrt(shape2.spectrum->total_area())); },
+      [&] { d1.compute<ConcurrencyTag>(cache.first.geodesics, images21, std::sqrt(shape1.spectrum->total_area())); });
+  if(core_12)
+    *core_12 = distortion_core(cache.first.sample_distances, d2, images12, s.distortion_core_tolerance,
+                               s.distortion_core_agreement);
+  if(core_21)
+    *core_21 = distortion_core(cache.second.sample_distances, d1, images21, s.distortion_core_tolerance,
+                               s.distortion_core_agreement);
+  return 0.5 * (map_distortion(cache.first.sample_distances, d2, images12) +
+                map_distortion(cache.second.sample_distances, d1, images21));
+}
+
+/// The distortion repair of a pair of maps (see automatic_initial_maps()). A map can be continuous,
+/// orientation-preserving and without tears and still be wrong on a large part: a humanoid whose
+/// upper body is mirrored and turned by 180 degrees, for one. Its isometric core (distortion_core())
+/// is the part where the map preserves geodesic distances. While the sample distortion
+/// (pair_distortion()) is above distortion_repair_threshold and distortion_repair_passes and
+/// maximum_passes allow, the maps are computed again by single_pass_initial_maps() with
+/// tear_repair_landmarks core samples of the map with the larger core (and their images) added to
+/// the landmarks, in the orientation of the maps, and kept when their sample distortion is lower by
+/// at least distortion_repair_gain (20%). Returns the result of the
+/// pass whose maps were kept, or `result` updated with the distortions.
+template <typename ConcurrencyTag>
+Automatic_initialization_result repair_distorted_maps(const Initialization_shape& shape1,
+                                                      const Initialization_shape& shape2,
+                                                      const Initialization_settings& s,
+                                                      std::vector<std::size_t>& map_12,
+                                                      std::vector<std::size_t>& map_21,
+                                                      Automatic_initialization_result result,
+                                                      Initialization_pass_cache* pass_cache = nullptr)
+{
+  Initialization_pass_cache own_cache;
+  if(!pass_cache) pass_cache = &own_cache;
+  Initialization_settings sampling = s;
+  sampling.distortion_repair_passes = std::max(1, s.distortion_repair_passes);
+  prepare_pass_cache<ConcurrencyTag>(shape1, shape2, sampling, *pass_cache);
+  const Indexed_mesh& m1 = *shape1.mesh;
+  const Indexed_mesh& m2 = *shape2.mesh;
+  std::vector<int> core12, core21;
+  double distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, *pass_cache, map_12, map_21, &core12, &core21);
+  result.sample_distortion_before = result.sample_distortion = distortion;
+  const int mesh_sign = (signed_volume(m1) * signed_volume(m2) < 0) ? -1 : 1;
+  double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
+  const std::vector<int>& samples1 = pass_cache->first.samples.distortion_vertices;
+  const std::vector<int>& samples2 = pass_cache->second.samples.distortion_vertices;
+  int passes = result.passes;
+  for(int pass = 1; pass <= s.distortion_repair_passes; ++pass)
+  {
+    if(distortion <= s.distortion_repair_threshold || passes >= s.maximum_passes) break;
+    ++passes;
+    Initialization_settings repair = s;
+    repair.landmark_orientation = result.orientation_sign * mesh_sign;  // all the fits of the first pass
+    // The landmarks come from the larger core only: the cores of the two maps of a half-flipped
+    // pair can keep opposite halves.
+    const std::size_t l = std::size_t(s.tear_repair_landmarks);
+    const bool forth = double(core12.size()) * double(samples2.size()) >= double(core21.size()) * double(samples1.size());
+    const std::vector<int>& core = forth ? core12 : core21;
+    for(std::size_t i = 0; i < std::min(l, core.size()); ++i)
+    {
+      if(forth)
+      {
+        const int v = samples1[std::size_t(core[i])];
+        repair.landmarks.emplace_back(std::size_t(v), map_12[std::size_t(v)]);
+      }
+      else
+      {
+        const int w = samples2[std::size_t(core[i])];
+        repair.landmarks.emplace_back(map_21[std::size_t(w)], std::size_t(w));
+      }
+    }
+    std::vector<std::size_t> r12, r21;
+    Automatic_initialization_result r =
+        single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, repair, r12, r21, pass_cache);
+    std::vector<int> next12, next21;
+    const double repaired = pair_distortion<ConcurrencyTag>(shape1, shape2, s, *pass_cache, r12, r21, &next12, &next21);
+    functional_map_seconds += r.functional_map_seconds;
+    zoomout_seconds += r.zoomout_seconds;
+    const bool keep = repaired <= (1.0 - s.distortion_repair_gain) * distortion;
+    if(s.verbose)
+      std::cerr << "automatic_initial_maps: distortion repair pass " << pass << " with " << repair.landmarks.size()
+                << " landmarks (cores of " << core12.size() << " and " << core21.size() << " samples): distortion "
+                << distortion << " -> " << repaired << (keep ? " (kept)" : " (discarded)") << "\n";
+    if(!keep) break;
+    r.spectra_seconds = result.spectra_seconds;
+    r.repair_passes = result.repair_passes;
+    r.torn_fraction_before = result.torn_fraction_before;
+    r.torn_fraction = pair_tears(m1, m2, r12, r21, s.tear_threshold).torn_fraction();
+    r.distortion_repair_passes = pass;
+    r.sample_distortion_before = result.sample_distortion_before;
+    r.sample_distortion = repaired;
+    result = r;
+    map_12.swap(r12);
+    map_21.swap(r21);
+    distortion = repaired;
+    core12.swap(next12);
+    core21.swap(next21);
+  }
+  result.functional_map_seconds = functional_map_seconds;
+  result.zoomout_seconds = zoomout_seconds;
+  result.passes = passes;
   return result;
 }
 
 /// The core of automatic_initial_maps() on precomputed shapes (see single_pass_initial_maps()):
-/// one pass, then the tear repair (repair_torn_maps()).
+/// one pass, then the tear repair (repair_torn_maps()) and the distortion repair
+/// (repair_distorted_maps()).
 template <typename ConcurrencyTag>
 Automatic_initialization_result automatic_initial_maps(const Initialization_shape& shape1,
                                                        const Initialization_shape& shape2,
@@ -1139,12 +1348,15 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
       single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, &cache);
   Automatic_initialization_result result =
       repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first, &cache);
+  if(s.distortion_repair_passes > 0)
+    result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
-/// repair_torn_maps() for maps computed elsewhere: their orientation (relative to the embeddings)
-/// is read from the orientation agreement of their triangles, and the result holds their tears.
+/// repair_torn_maps() and repair_distorted_maps() for maps computed elsewhere: their orientation
+/// (relative to the embeddings) is read from the orientation agreement of their triangles, and the
+/// result holds their tears and distortions.
 template <typename ConcurrencyTag>
 Automatic_initialization_result repair_given_maps(const Initialization_shape& shape1, const Initialization_shape& shape2,
                                                   const Initialization_settings& s, std::vector<std::size_t>& map_12,
@@ -1158,7 +1370,11 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
   given.orientation_agreement = 0.5 * (orientation_agreement(m1, m2, vertex_normals(m2), t12) +
                                        orientation_agreement(m2, m1, vertex_normals(m1), t21));
   given.orientation_sign = given.orientation_agreement >= 0.5 ? 1 : -1;
-  Automatic_initialization_result r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given);
+  Initialization_pass_cache cache;
+  Automatic_initialization_result r =
+      repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
+  if(s.distortion_repair_passes > 0)
+    r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -1251,7 +1467,10 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// pairs of maps) and refitting. Finally the tear repair: maps that swap two parts of a
 /// symmetric body (limbs, feet) tear where a swapped part meets the rest; when the regions cut off
 /// by the tears exceed 1% of a mesh, the maps are computed again with landmarks sampled in the
-/// largest region of each map (see repair_torn_maps()), and kept when they are less torn.
+/// largest region of each map (see repair_torn_maps()), and kept when they are less torn. Optionally
+/// (`number_of_distortion_repair_passes`) the distortion repair: maps that distort the geodesic
+/// distances of farthest-point samples by more than 0.035 on average are computed again with
+/// landmarks in their isometric core, and kept when they distort at least 20% less.
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
 /// orientations (signed volumes of opposite signs) the orientation term is reversed
@@ -1294,6 +1513,9 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///   - `tear_threshold`: a source edge is torn when its images are at least this far apart,
 ///     relative to the square root of the target's area (and at least four mean edge lengths);
 ///     type `double`; default 0.06.
+///   - `number_of_distortion_repair_passes`: distortion repair passes at most (maps continuous but
+///     wrong on a large part, e.g. half-body flips; see repair_distorted_maps()); type `int`;
+///     default 0 (each pass costs about as much as the first one).
 ///   - `verbose`: print progress to `std::cerr`; type `bool`; default false.
 ///   - `vertex_point_map`, `vertex_index_map`: for both meshes (use the same types); defaults the
 ///     meshes' own.
@@ -1349,12 +1571,16 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 /// cut off from the largest one (the core) exceed `tear_min_fraction` of a mesh, both maps are
 /// recomputed by the automatic initialisation with farthest-point samples of the cores (and
 /// their images) as landmarks, in the orientation of the given maps, and kept when they are less
-/// torn. Maps without tears are returned unchanged.
+/// torn. Maps without tears are returned unchanged. With `number_of_distortion_repair_passes`,
+/// the distortion repair follows (see repair_distorted_maps(): maps whose sample distortion is above
+/// 0.035 are recomputed from landmarks in their isometric core, and kept when at least 20% less
+/// distorted).
 ///
 /// \param map_12, map_21 input and output: `map_12[i]` is the vertex of `tm2` matched to vertex i of
 ///   `tm1` (indices of the vertex index maps), `map_21` the other way round
 /// \param np the named parameters of automatic_initial_maps(); `landmarks` are kept in every pass
-/// \returns `repair_passes` (0: the maps were kept), the torn fractions before and after, timings
+/// \returns `repair_passes` (0: the maps were kept), the torn fractions before and after,
+///   `distortion_repair_passes` and the sample distortions before and after, timings
 /// \throws Invalid_map_error for maps of the wrong size or with entries out of range, and the
 ///   exceptions of automatic_initial_maps()
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename TriangleMesh2,

@@ -79,7 +79,9 @@ namespace Surface_mesh_correspondence {
   X(commutativity_weight_t, commutativity_weight, commutativity_weight)                  \
   X(landmarks_t, landmarks, landmarks)                                                   \
   X(number_of_repair_passes_t, number_of_repair_passes, number_of_repair_passes)         \
-  X(tear_threshold_t, tear_threshold, tear_threshold)
+  X(tear_threshold_t, tear_threshold, tear_threshold)                                    \
+  X(number_of_distortion_repair_passes_t, number_of_distortion_repair_passes,            \
+    number_of_distortion_repair_passes)
 
 namespace internal_np {
 #define CGAL_SMC_DECLARE_TAG(X, Y, Z) enum X { Y };
