@@ -178,7 +178,7 @@ struct Initialization_settings
   /// first one): after the tear repair, the maps are recomputed with
   /// landmarks from their isometric core (the largest set of samples whose pairwise geodesic
   /// distances the map preserves, see distortion_core()), with all the fit configurations of the
-  /// first pass, and kept when they distort the sample distances less.
+  /// first pass, and kept when they distort the sample distances less (distortion_repair_gain).
   int distortion_repair_passes = 0;
   /// Two samples agree when the map changes their geodesic distance by less than this (relative to
   /// the square root of the areas)...
