@@ -203,6 +203,31 @@ BOOST_AUTO_TEST_CASE(sample_geodesics_match_great_circles)
   BOOST_TEST(worst < 0.025);  // 1.6% of the largest distance, pi / 2 (fast marching on 2562 vertices)
 }
 
+namespace {
+
+/// The distortion score's inputs on the pair: fast marching on both meshes, 100 farthest-point
+/// samples of mesh 1 and their pairwise geodesic distances (divided by sqrt(area)).
+struct Sample_geodesics
+{
+  smc::internal::Indexed_mesh m1, m2;
+  smc::internal::Fast_marching_geometry g1, g2;
+  smc::internal::Initialization_samples samples;
+  double s1, s2;
+  Eigen::MatrixXd d1;
+  explicit Sample_geodesics(const Pair_fixture& f)
+      : m1(smc::internal::make_indexed_mesh(f.pair.m1)), m2(smc::internal::make_indexed_mesh(f.pair.m2))
+  {
+    g1.build(m1);
+    g2.build(m2);
+    samples = smc::internal::initialization_samples(m1, 0, 100);
+    s1 = std::sqrt(m1.total_area);
+    s2 = std::sqrt(m2.total_area);
+    d1 = smc::internal::pairwise_geodesic_distances(g1, samples.distortion_vertices, s1);
+  }
+};
+
+} // namespace
+
 BOOST_AUTO_TEST_CASE(distortion_ranks_a_swapped_limb_below_the_true_map)
 {
   // The selection criterion of the fits: a map that sends one arm to the other (a partial flip,
@@ -218,13 +243,11 @@ BOOST_AUTO_TEST_CASE(distortion_ranks_a_swapped_limb_below_the_true_map)
     const bool arm = std::abs(f.pair.m1.point(v).x()) > 0.9 && f.pair.m1.point(v).y() > 0.0;
     swapped[v.idx()] = arm ? flipped[v.idx()] : f.pair.gt_12[v.idx()];
   }
-  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
-  smci::Fast_marching_geometry g1, g2;
-  g1.build(m1);
-  g2.build(m2);
-  const smci::Initialization_samples samples = smci::initialization_samples(m1, 0, 100);
-  const double s1 = std::sqrt(m1.total_area), s2 = std::sqrt(m2.total_area);
-  const Eigen::MatrixXd d1 = smci::pairwise_geodesic_distances(g1, samples.distortion_vertices, s1);
+  const Sample_geodesics sg(f);
+  const smci::Fast_marching_geometry& g2 = sg.g2;
+  const smci::Initialization_samples& samples = sg.samples;
+  const double s2 = sg.s2;
+  const Eigen::MatrixXd& d1 = sg.d1;
   auto images_of = [&](const std::vector<std::size_t>& map) {
     std::vector<int> images;
     for(int v : samples.distortion_vertices) images.push_back(int(map[v]));
@@ -393,13 +416,11 @@ BOOST_AUTO_TEST_CASE(isometric_core_leaves_out_swapped_limbs)
   namespace smci = smc::internal;
   const Pair_fixture& f = symmetric();
   const Swapped_arms s = swapped_arms(f);
-  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
-  smci::Fast_marching_geometry g1, g2;
-  g1.build(m1);
-  g2.build(m2);
-  const smci::Initialization_samples samples = smci::initialization_samples(m1, 0, 100);
-  const double s1 = std::sqrt(m1.total_area), s2 = std::sqrt(m2.total_area);
-  const Eigen::MatrixXd d1 = smci::pairwise_geodesic_distances(g1, samples.distortion_vertices, s1);
+  const Sample_geodesics sg(f);
+  const smci::Fast_marching_geometry& g2 = sg.g2;
+  const smci::Initialization_samples& samples = sg.samples;
+  const double s2 = sg.s2;
+  const Eigen::MatrixXd& d1 = sg.d1;
   auto core_of = [&](const std::vector<std::size_t>& map) {
     std::vector<int> images;
     for(int v : samples.distortion_vertices) images.push_back(int(map[v]));
