@@ -170,6 +170,57 @@ BOOST_AUTO_TEST_CASE(automatic_times_energies_and_normalisations)
   BOOST_TEST(wks100.minCoeff() > 0);
 }
 
+BOOST_AUTO_TEST_CASE(leading_eigenpairs_only)
+{
+  // number_of_eigenpairs(k): the signatures of the first k eigenpairs of a larger spectrum, by the
+  // formulas written out here (times, energies and normalisers from eigenvalues 1 .. k - 1 only).
+  const smc::Laplace_beltrami_spectrum s(jittered_sphere(2, 0.3), params::number_of_eigenpairs(40));
+  const int k = 25;
+  const double A = s.total_area();
+  const Eigen::VectorXd t = smc::heat_kernel_signature_times(s, params::number_of_hks_scales(3, params::number_of_eigenpairs(k)));
+  BOOST_TEST(t[0] == 4 * std::log(10.0) / (s.eigenvalues()[k - 1] * A), boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(t[2] == 4 * std::log(10.0) / (s.eigenvalues()[1] * A), boost::test_tools::tolerance(1e-12));
+  const smc::Wave_kernel_signature_energies e = smc::wave_kernel_signature_energies(
+      s, params::number_of_wks_energies(4, params::number_of_eigenpairs(k)));
+  BOOST_TEST(e.log_energies[3] == std::log(s.eigenvalues()[k - 1] * A), boost::test_tools::tolerance(1e-12));
+  const Eigen::MatrixXd hks = smc::heat_kernel_signature(s, params::number_of_hks_scales(3, params::number_of_eigenpairs(k)));
+  const Eigen::MatrixXd wks = smc::wave_kernel_signature(s, params::number_of_wks_energies(4, params::number_of_eigenpairs(k)));
+  double worst = 0;
+  for(int i = 0; i < s.number_of_vertices(); ++i)
+  {
+    for(int c = 0; c < 3; ++c)
+    {
+      double sum = 0, trace = 0;
+      for(int j = 0; j < k; ++j)
+      {
+        const double w = std::exp(-s.eigenvalues()[j] * A * t[c]), phi = s.eigenvectors()(i, j);
+        sum += w * phi * phi * A;
+        trace += w;
+      }
+      worst = std::max(worst, std::abs(hks(i, c) - sum / trace) / (sum / trace));
+    }
+    for(int c = 0; c < 4; ++c)
+    {
+      double sum = 0, normaliser = 0;
+      for(int j = 1; j < k; ++j)
+      {
+        const double d = e.log_energies[c] - std::log(s.eigenvalues()[j] * A), phi = s.eigenvectors()(i, j);
+        const double g = std::exp(-d * d / (2 * e.sigma * e.sigma));
+        sum += g * phi * phi * A;
+        normaliser += g;
+      }
+      worst = std::max(worst, std::abs(wks(i, c) - sum / normaliser) / (sum / normaliser));
+    }
+  }
+  BOOST_TEST(worst < 1e-10);
+  // Using them all is the default; more than the spectrum has, or none, is an error.
+  BOOST_TEST((smc::wave_kernel_signature(s, params::number_of_eigenpairs(40)) - smc::wave_kernel_signature(s)).norm() == 0);
+  BOOST_TEST(contains(parameter_error_of([&] { smc::wave_kernel_signature(s, params::number_of_eigenpairs(41)); }),
+                      "number_of_eigenpairs = 41 must be in [1, 40]"));
+  BOOST_TEST(contains(parameter_error_of([&] { smc::heat_kernel_signature(s, params::number_of_eigenpairs(0)); }),
+                      "number_of_eigenpairs = 0"));
+}
+
 BOOST_AUTO_TEST_CASE(isometric_bending_keeps_the_descriptors)
 {
   // A flat strip and the same strip bent onto a half cylinder (same connectivity, edge lengths

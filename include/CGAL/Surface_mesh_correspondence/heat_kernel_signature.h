@@ -74,14 +74,16 @@ Eigen::MatrixXd heat_kernel_signature(const Eigen::VectorXd& eigenvalues,
 /// \param spectrum the spectrum
 /// \param np optional named parameters among:
 ///   - `number_of_hks_scales`: number of times d; type: `int`; default: 16; at least 1.
+///   - `number_of_eigenpairs`: k, the signature uses the first k eigenpairs of the spectrum; type:
+///     `int`; default: all of them; 1 <= k <= `spectrum.number_of_eigenpairs()`.
 /// \pre the spectrum has at least one non-zero eigenvalue (else Invalid_parameter_error).
 template <typename NamedParameters = parameters::Default_named_parameters>
 Eigen::VectorXd heat_kernel_signature_times(const Laplace_beltrami_spectrum& spectrum,
                                             const NamedParameters& np = parameters::default_values())
 {
   const int d = internal::number_of_hks_scales(np);
-  const int first = spectrum.number_of_zero_eigenvalues();
-  const int k = spectrum.number_of_eigenpairs();
+  const int k = internal::signature_eigenpairs(spectrum, np, "heat kernel signature");
+  const int first = std::min(spectrum.number_of_zero_eigenvalues(), k);
   if(first >= k || !(spectrum.eigenvalues()[first] > 0))
     throw Invalid_parameter_error(
         "heat kernel signature: the spectrum has no non-zero eigenvalue (" + std::to_string(k) +
@@ -113,6 +115,8 @@ Eigen::VectorXd heat_kernel_signature_times(const Laplace_beltrami_spectrum& spe
 /// \param spectrum the Laplace-Beltrami spectrum
 /// \param np optional named parameters among:
 ///   - `number_of_hks_scales`: number of times d; type: `int`; default: 16; at least 1.
+///   - `number_of_eigenpairs`: k, the signature uses the first k eigenpairs of the spectrum; type:
+///     `int`; default: all of them; 1 <= k <= `spectrum.number_of_eigenpairs()`.
 /// \returns the n x d matrix whose row i is the descriptor of vertex i.
 /// \pre the spectrum has at least one non-zero eigenvalue (else Invalid_parameter_error).
 template <typename ConcurrencyTag = CGAL::Sequential_tag,
@@ -122,7 +126,8 @@ Eigen::MatrixXd heat_kernel_signature(const Laplace_beltrami_spectrum& spectrum,
 {
   const Eigen::VectorXd times = heat_kernel_signature_times(spectrum, np);
   const double area = spectrum.total_area();
-  const Eigen::ArrayXd lambda = spectrum.eigenvalues().array() * area;
+  const int k = internal::signature_eigenpairs(spectrum, np, "heat kernel signature");
+  const Eigen::ArrayXd lambda = spectrum.eigenvalues().head(k).array() * area;
   Eigen::MatrixXd weights(lambda.size(), times.size());
   for(Eigen::Index c = 0; c < times.size(); ++c)
   {

@@ -102,6 +102,8 @@ Eigen::MatrixXd wave_kernel_signature(const Eigen::VectorXd& eigenvalues,
 ///   - `number_of_wks_energies`: d; type: `int`; default: 100; at least 1.
 ///   - `wks_variance`: the filter width in multiples of the energy step; type: `double`;
 ///     default: 7; positive.
+///   - `number_of_eigenpairs`: k, the signature uses the first k eigenpairs of the spectrum; type:
+///     `int`; default: all of them; 1 <= k <= `spectrum.number_of_eigenpairs()`.
 /// \pre the spectrum has at least two distinct non-zero eigenvalues (else Invalid_parameter_error).
 template <typename NamedParameters = parameters::Default_named_parameters>
 Wave_kernel_signature_energies
@@ -120,8 +122,8 @@ wave_kernel_signature_energies(const Laplace_beltrami_spectrum& spectrum,
   if(!(variance > 0) || !std::isfinite(variance))
     throw Invalid_parameter_error("wave kernel signature: wks_variance = " + std::to_string(variance) +
                                   " must be positive");
-  const int first = spectrum.number_of_zero_eigenvalues();
-  const int k = spectrum.number_of_eigenpairs();
+  const int k = internal::signature_eigenpairs(spectrum, np, "wave kernel signature");
+  const int first = std::min(spectrum.number_of_zero_eigenvalues(), k);
   const double area = spectrum.total_area();
   if(first >= k || !(spectrum.eigenvalues()[first] > 0) ||
      !(spectrum.eigenvalues()[k - 1] > spectrum.eigenvalues()[first]))
@@ -167,6 +169,8 @@ wave_kernel_signature_energies(const Laplace_beltrami_spectrum& spectrum,
 ///   - `number_of_wks_energies`: d; type: `int`; default: 100; at least 1.
 ///   - `wks_variance`: the filter width in multiples of the energy step; type: `double`;
 ///     default: 7; positive.
+///   - `number_of_eigenpairs`: k, the signature uses the first k eigenpairs of the spectrum; type:
+///     `int`; default: all of them; 1 <= k <= `spectrum.number_of_eigenpairs()`.
 /// \returns the n x d matrix whose row i is the descriptor of vertex i.
 /// \pre the spectrum has at least two distinct non-zero eigenvalues (else Invalid_parameter_error).
 template <typename ConcurrencyTag = CGAL::Sequential_tag,
@@ -176,7 +180,8 @@ Eigen::MatrixXd wave_kernel_signature(const Laplace_beltrami_spectrum& spectrum,
 {
   const Wave_kernel_signature_energies energies = wave_kernel_signature_energies(spectrum, np);
   const double area = spectrum.total_area();
-  Eigen::MatrixXd weights = internal::wave_kernel_weights(spectrum.eigenvalues() * area,
+  const int k = internal::signature_eigenpairs(spectrum, np, "wave kernel signature");
+  Eigen::MatrixXd weights = internal::wave_kernel_weights(spectrum.eigenvalues().head(k) * area,
                                                           energies.log_energies, energies.sigma);
   for(Eigen::Index c = 0; c < weights.cols(); ++c)
   {

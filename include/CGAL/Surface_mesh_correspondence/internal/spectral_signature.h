@@ -10,6 +10,7 @@
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_SPECTRAL_SIGNATURE_H
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 
 #include <Eigen/Core>
@@ -22,7 +23,8 @@ namespace CGAL {
 namespace Surface_mesh_correspondence {
 namespace internal {
 
-/// Returns scale * (Phi o Phi) * weights, an n x d matrix (Phi is n x k, weights k x d).
+/// Returns scale * (Phi o Phi) * weights, an n x d matrix (weights k x d; Phi: the first k
+/// columns of `eigenvectors`, which may have more).
 template <typename ConcurrencyTag>
 Eigen::MatrixXd squared_eigenvector_transform(const Eigen::MatrixXd& eigenvectors,
                                               const Eigen::MatrixXd& weights, double scale = 1.0)
@@ -34,10 +36,24 @@ Eigen::MatrixXd squared_eigenvector_transform(const Eigen::MatrixXd& eigenvector
   parallel_for<ConcurrencyTag>(blocks, [&](std::size_t b) {
     const Eigen::Index begin = static_cast<Eigen::Index>(b * block);
     const Eigen::Index rows = std::min<Eigen::Index>(static_cast<Eigen::Index>(block), n - begin);
-    const Eigen::MatrixXd squared = eigenvectors.middleRows(begin, rows).array().square().matrix();
+    const Eigen::MatrixXd squared =
+        eigenvectors.block(begin, 0, rows, weights.rows()).array().square().matrix();
     out.middleRows(begin, rows).noalias() = scale * (squared * weights);
   });
   return out;
+}
+
+/// The number k of leading eigenpairs of `spectrum` a signature uses: the named parameter
+/// `number_of_eigenpairs` (1 <= k <= the spectrum's), by default all of them.
+template <typename Spectrum, typename NamedParameters>
+int signature_eigenpairs(const Spectrum& spectrum, const NamedParameters& np, const std::string& who)
+{
+  const int all = spectrum.number_of_eigenpairs();
+  const int k = parameters::choose_parameter(parameters::get_parameter(np, internal_np::number_of_eigenpairs), all);
+  if(k < 1 || k > all)
+    throw Invalid_parameter_error(who + ": number_of_eigenpairs = " + std::to_string(k) + " must be in [1, " +
+                                  std::to_string(all) + "] (the eigenpairs of the spectrum)");
+  return k;
 }
 
 /// Checks a raw eigen-decomposition given to a descriptor: sizes agree, values are finite.
