@@ -533,6 +533,34 @@ BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)
   BOOST_TEST(f.error_12(m12, f.pair.gt_12) < 0.015);
 }
 
+BOOST_AUTO_TEST_CASE(kept_maps_grow_from_the_pass_size_to_the_final_size)
+{
+  // Passes end their ZoomOut at zoomout_pass_size; the kept maps then grow to zoomout_final_size.
+  const Pair_fixture& f = asymmetric();
+  std::vector<std::size_t> a12, a21, b12, b21, c12, c21;
+  const smc::Automatic_initialization_result a = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, a12, a21, params::zoomout_final_size(80).zoomout_pass_size(80));
+  const smc::Automatic_initialization_result b = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, b12, b21, params::zoomout_final_size(160).zoomout_pass_size(80));
+  const smc::Automatic_initialization_result c = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, c12, c21, params::zoomout_final_size(120).zoomout_pass_size(80));
+  BOOST_TEST(a.final_basis_size == 80);
+  BOOST_TEST(b.final_basis_size == 160);
+  BOOST_TEST(b.functional_map_12.rows() == 160);
+  BOOST_TEST(b.functional_map_21.cols() == 160);
+  // The passes do not depend on the final size: their descriptors use the pass's 80 eigenpairs
+  // (spectra of 80, 160 and 120 eigenpairs agree on those to the solver's precision).
+  BOOST_TEST(std::abs(a.selection_score - b.selection_score) < 1e-6 * a.selection_score);
+  BOOST_TEST(std::abs(a.selection_score - c.selection_score) < 1e-6 * a.selection_score);
+  const double ea = f.error_12(a12, f.pair.gt_12) + f.error_21(a21, f.pair.gt_21);
+  const double eb = f.error_12(b12, f.pair.gt_12) + f.error_21(b21, f.pair.gt_21);
+  BOOST_TEST_MESSAGE("errors (both directions): pass 80 only " << ea << ", grown to 160 " << eb);
+  BOOST_TEST(a12 != b12);  // the growth changed the maps,
+  BOOST_TEST(eb < ea);     // and made them more accurate
+  BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, c12, c21, params::zoomout_pass_size(1)),
+                    smc::Invalid_parameter_error);
+}
+
 BOOST_AUTO_TEST_CASE(results_are_deterministic_and_parallel_matches_sequential)
 {
   const Pair_fixture& f = asymmetric();
@@ -552,7 +580,7 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_give_the_same_maps)
   const Pair_fixture& f = asymmetric();
   std::vector<std::size_t> a12, a21, b12, b21, c12, c21;
   smc::automatic_initial_maps(f.pair.m1, f.pair.m2, a12, a21);
-  const smc::Correspondence_shape<Mesh> s1(f.pair.m1, params::number_of_eigenpairs(120)),
+  const smc::Correspondence_shape<Mesh> s1(f.pair.m1, params::number_of_eigenpairs(200)),
       s2(f.pair.m2, params::number_of_eigenpairs(40));  // reused / recomputed
   smc::automatic_initial_maps(s1, s2, b12, b21);
   BOOST_TEST(a12 == b12);

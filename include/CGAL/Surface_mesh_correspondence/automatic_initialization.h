@@ -124,7 +124,11 @@ struct Initialization_settings
   bool select_by_distortion = true;
   /// Farthest-point samples whose pairwise geodesic distances measure the distortion.
   int distortion_samples = 100;
-  int zoomout_final_size = 120;          ///< k_final
+  int zoomout_final_size = 200;          ///< k_final
+  /// Basis size at which every pass (the first one and each repair pass) ends its ZoomOut: the
+  /// tears, the distortions and the choice between passes are measured there, and the maps that
+  /// are kept then grow on to zoomout_final_size (grow_initial_maps()).
+  int zoomout_pass_size = 120;
   int zoomout_step = 5;                  ///< ZoomOut basis growth per iteration
   int number_of_eigenpairs = 0;          ///< eigenpairs computed (0: zoomout_final_size)
   // Descriptors.
@@ -211,6 +215,7 @@ Initialization_settings initialization_settings(const NamedParameters& np)
   Initialization_settings s;
   s.zoomout_final_size = choose_parameter(get_parameter(np, internal_np::zoomout_final_size),
                                           s.zoomout_final_size);
+  s.zoomout_pass_size = choose_parameter(get_parameter(np, internal_np::zoomout_pass_size), s.zoomout_pass_size);
   s.zoomout_step = choose_parameter(get_parameter(np, internal_np::zoomout_step), s.zoomout_step);
   s.number_of_eigenpairs = choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs),
                                             s.number_of_eigenpairs);
@@ -283,6 +288,8 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if((s.select_by_distortion || s.distortion_repair_passes > 0) && s.distortion_samples < 2)
     fail("distortion_samples = " + std::to_string(s.distortion_samples) + " must be at least 2");
   if(s.zoomout_step < 1) fail("zoomout_step = " + std::to_string(s.zoomout_step) + " must be positive");
+  if(s.zoomout_pass_size < 2)
+    fail("zoomout_pass_size = " + std::to_string(s.zoomout_pass_size) + " must be at least 2");
   if(s.number_of_eigenpairs != 0 && s.number_of_eigenpairs < s.zoomout_final_size)
     fail("number_of_eigenpairs = " + std::to_string(s.number_of_eigenpairs) +
          " is smaller than zoomout_final_size = " + std::to_string(s.zoomout_final_size));
@@ -314,6 +321,14 @@ inline void check_initialization_settings(const Initialization_settings& s)
 inline int initialization_number_of_eigenpairs(const Initialization_settings& s)
 {
   return s.number_of_eigenpairs > 0 ? s.number_of_eigenpairs : s.zoomout_final_size;
+}
+
+/// The leading eigenpairs that the WKS and HKS descriptors of the initialisation use: those of the
+/// passes (min(zoomout_final_size, zoomout_pass_size)), or all of them with an explicit
+/// number_of_eigenpairs. The descriptors, and so the passes, then do not depend on the final size.
+inline int initialization_descriptor_eigenpairs(const Initialization_settings& s)
+{
+  return s.number_of_eigenpairs > 0 ? s.number_of_eigenpairs : std::min(s.zoomout_final_size, s.zoomout_pass_size);
 }
 
 /// Column layout of initialization_descriptors(): d_wks WKS columns, d_hks HKS columns, then the
@@ -361,21 +376,23 @@ Eigen::MatrixXd initialization_descriptors(const Indexed_mesh& mesh, const Lapla
   const int n = spectrum.number_of_vertices();
   const Initialization_descriptor_layout l = initialization_descriptor_layout(s);
   Eigen::MatrixXd out(n, l.total());
+  const int k = std::min(initialization_descriptor_eigenpairs(s), spectrum.number_of_eigenpairs());
   if(l.wks > 0)
     out.leftCols(l.wks) = wave_kernel_signature<ConcurrencyTag>(
-        spectrum, parameters::number_of_wks_energies(l.wks, parameters::wks_variance(s.wks_variance)));
+        spectrum, parameters::number_of_wks_energies(
+                      l.wks, parameters::wks_variance(s.wks_variance, parameters::number_of_eigenpairs(k))));
   if(l.hks > 0)
-    out.middleCols(l.wks, l.hks) =
-        heat_kernel_signature<ConcurrencyTag>(spectrum, parameters::number_of_hks_scales(l.hks));
+    out.middleCols(l.wks, l.hks) = heat_kernel_signature<ConcurrencyTag>(
+        spectrum, parameters::number_of_hks_scales(l.hks, parameters::number_of_eigenpairs(k)));
   if(!l.signed_pairs.empty())
   {
     Eigen::MatrixXd g = gradient_cross_products(mesh, out.leftCols(l.plain()), l.signed_pairs,
                                                 1.0 / std::sqrt(spectrum.total_area()));
-    const int k = std::min(s.signed_descriptor_smoothing, spectrum.number_of_eigenpairs());
-    if(k > 0)
+    const int smoothing = std::min(s.signed_descriptor_smoothing, spectrum.number_of_eigenpairs());
+    if(smoothing > 0)
     {
       const Eigen::MatrixXd& phi = spectrum.eigenvectors();
-      g = phi.leftCols(k) * (phi.leftCols(k).transpose() * (spectrum.mass().asDiagonal() * g));
+      g = phi.leftCols(smoothing) * (phi.leftCols(smoothing).transpose() * (spectrum.mass().asDiagonal() * g));
     }
     out.rightCols(g.cols()) = g;
   }
@@ -541,6 +558,27 @@ inline double orientation_agreement(const Indexed_mesh& source, const Indexed_me
     if(normal.dot(reference) > 0) agree += w;
   }
   return total > 0 ? agree / total : 0.5;
+}
+
+/// Stores the final maps of a pass (or of grow_initial_maps()) and their cycle statistics,
+/// orientation agreement and functional maps in `result`.
+inline void set_initial_maps(const Indexed_mesh& m1, const Indexed_mesh& m2, const std::vector<int>& t12,
+                             const std::vector<int>& t21, const Eigen::MatrixXd& C12, const Eigen::MatrixXd& C21,
+                             std::vector<std::size_t>& map_12, std::vector<std::size_t>& map_21,
+                             Automatic_initialization_result& result)
+{
+  const double n1 = double(m1.number_of_vertices()), n2 = double(m2.number_of_vertices());
+  double e1, f1, e2, f2;
+  cycle_statistics(m1, t12, t21, e1, f1);
+  cycle_statistics(m2, t21, t12, e2, f2);
+  result.cycle_error = (e1 * n1 + e2 * n2) / (n1 + n2);
+  result.cycle_fixed_fraction = (f1 * n1 + f2 * n2) / (n1 + n2);
+  result.orientation_agreement = 0.5 * (orientation_agreement(m1, m2, vertex_normals(m2), t12) +
+                                        orientation_agreement(m2, m1, vertex_normals(m1), t21));
+  result.functional_map_12 = C12;
+  result.functional_map_21 = C21;
+  map_12.assign(t12.begin(), t12.end());
+  map_21.assign(t21.begin(), t21.end());
 }
 
 /// Farthest point samples (edge-graph distances) of the whole mesh, starting from vertex 0.
@@ -1098,9 +1136,10 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
               << " (scores " << candidates[best12].score12 << ", " << candidates[best21].score21
               << "), orientation " << result.orientation_sign << "\n";
 
-  // ZoomOut from the selection size to the final size.
+  // ZoomOut from the selection size to the pass size (grow_initial_maps() goes on to the final
+  // size once the pass is chosen).
   const Clock::time_point zoom_start = Clock::now();
-  zs.final_size = kf;
+  zs.final_size = std::min(kf, std::max(s.zoomout_pass_size, k_select));
   std::vector<int> t12, t21;
   if(s.coupled_zoomout)
     coupled_zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, mass2, C12, C21, zs, rows1, rows2,
@@ -1111,28 +1150,63 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
     C21 = zoomout_refine<ConcurrencyTag>(basis2, mass2, basis1, C21, zs, rows2, landmarks21, t21, features21);
   }
   result.zoomout_seconds = seconds_since(zoom_start);
-
-  double e1, f1, e2, f2;
-  cycle_statistics(m1, t12, t21, e1, f1);
-  cycle_statistics(m2, t21, t12, e2, f2);
-  result.cycle_error = (e1 * n1 + e2 * n2) / double(n1 + n2);
-  result.cycle_fixed_fraction = (f1 * n1 + f2 * n2) / double(n1 + n2);
-  {
-    const Indexed_mesh::Points normals1 = vertex_normals(m1), normals2 = vertex_normals(m2);
-    const double o12 = orientation_agreement(m1, m2, normals2, t12);
-    const double o21 = orientation_agreement(m2, m1, normals1, t21);
-    result.orientation_agreement = 0.5 * (o12 + o21);
-  }
-  result.functional_map_12 = C12;
-  result.functional_map_21 = C21;
-  map_12.assign(t12.begin(), t12.end());
-  map_21.assign(t21.begin(), t21.end());
+  result.final_basis_size = zs.final_size;
+  set_initial_maps(m1, m2, t12, t21, C12, C21, map_12, map_21, result);
   result.total_seconds = seconds_since(start);
   if(s.verbose)
-    std::cerr << "automatic_initial_maps: ZoomOut to " << kf << " in " << result.zoomout_seconds
+    std::cerr << "automatic_initial_maps: ZoomOut to " << zs.final_size << " in " << result.zoomout_seconds
               << " s, cycle error " << result.cycle_error << ", fixed " << result.cycle_fixed_fraction
               << ", orientation agreement " << result.orientation_agreement << "\n";
   return result;
+}
+
+/// The last step of automatic_initial_maps(): the maps that were kept (computed by a pass with a
+/// ZoomOut to zoomout_pass_size) grow on to zoomout_final_size by the same ZoomOut, started from
+/// the pass's final functional maps, with the user's landmarks (not those of a repair pass: the
+/// maps already follow them). Nothing happens when the maps are already of the final size.
+template <typename ConcurrencyTag>
+void grow_initial_maps(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                       const Initialization_settings& s, const Initialization_pass_cache& cache,
+                       std::vector<std::size_t>& map_12, std::vector<std::size_t>& map_21,
+                       Automatic_initialization_result& result)
+{
+  const int kf = s.zoomout_final_size, k = int(result.functional_map_12.rows());
+  if(k == 0 || k >= kf || result.functional_map_21.rows() != k) return;
+  const auto start = std::chrono::steady_clock::now();
+  const Indexed_mesh& m1 = *shape1.mesh;
+  const Indexed_mesh& m2 = *shape2.mesh;
+  const Eigen::MatrixXd basis1 = unit_area_basis(*shape1.spectrum, kf), basis2 = unit_area_basis(*shape2.spectrum, kf);
+  const Eigen::VectorXd mass1 = unit_area_mass(*shape1.spectrum), mass2 = unit_area_mass(*shape2.spectrum);
+  std::vector<std::pair<int, int> > landmarks, landmarks21;
+  for(const auto& l : s.landmarks)
+  {
+    landmarks.emplace_back(int(l.first), int(l.second));
+    landmarks21.emplace_back(int(l.second), int(l.first));
+  }
+  Zoomout_settings zs;
+  zs.step = s.zoomout_step;
+  zs.final_size = kf;
+  zs.landmark_weight = s.zoomout_landmark_weight;
+  zs.bijectivity_weight = s.zoomout_bijectivity_weight;
+  Eigen::MatrixXd C12 = result.functional_map_12, C21 = result.functional_map_21;
+  const std::vector<int>& rows1 = cache.first.samples.rows;
+  const std::vector<int>& rows2 = cache.second.samples.rows;
+  std::vector<int> t12, t21;
+  if(s.coupled_zoomout)
+    coupled_zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, mass2, C12, C21, zs, rows1, rows2, landmarks, t12,
+                                           t21);
+  else
+  {
+    C12 = zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, C12, zs, rows1, landmarks, t12);
+    C21 = zoomout_refine<ConcurrencyTag>(basis2, mass2, basis1, C21, zs, rows2, landmarks21, t21);
+  }
+  set_initial_maps(m1, m2, t12, t21, C12, C21, map_12, map_21, result);
+  result.final_basis_size = kf;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.zoomout_seconds += seconds;
+  if(s.verbose)
+    std::cerr << "automatic_initial_maps: ZoomOut from " << k << " to " << kf << " in " << seconds
+              << " s, cycle error " << result.cycle_error << ", fixed " << result.cycle_fixed_fraction << "\n";
 }
 
 /// The tears of both maps of a pair (1 -> 2 on mesh 1, 2 -> 1 on mesh 2).
@@ -1350,6 +1424,7 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
       repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first, &cache);
   if(s.distortion_repair_passes > 0)
     result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
+  grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -1375,6 +1450,8 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
       repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
   if(s.distortion_repair_passes > 0)
     r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
+  // Maps of a kept repair pass grow to the final size (the given maps have no functional maps).
+  grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -1496,7 +1573,12 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     farthest-point samples) is kept; giving `spectral_basis_size`, `orientation_weight` or
 ///     `commutativity_weight` fits a single configuration, the values not given taken from the
 ///     first one.
-///   - `zoomout_final_size`: \f$ k_f \f$, the basis size after ZoomOut; type `int`; default 120.
+///   - `zoomout_final_size`: \f$ k_f \f$, the basis size after ZoomOut; type `int`; default 200.
+///   - `zoomout_pass_size`: the basis size at which every pass (the first one and each repair pass)
+///     ends its ZoomOut; the tears, the distortions and the choice between passes are measured
+///     there, and the kept maps then grow to \f$ k_f \f$; the WKS and HKS descriptors of the
+///     initialisation use this many eigenpairs (with `number_of_eigenpairs` not given); type
+///     `int`; default 120.
 ///   - `zoomout_step`: the basis growth per ZoomOut iteration; type `int`; default 5.
 ///   - `number_of_eigenpairs`: eigenpairs computed, at least \f$ k_f \f$; type `int`; default
 ///     \f$ k_f \f$.
@@ -1543,7 +1625,7 @@ Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1,
 /// automatic_initial_maps() on two prepared shapes, to be refined with the same shapes. The
 /// shapes' flat meshes are reused, and their spectra too when they have exactly the eigenpairs
 /// the initialisation needs on the intrinsic Delaunay triangulation (prepare them with
-/// `number_of_eigenpairs(120)` for the defaults); otherwise the spectrum is computed. The
+/// `number_of_eigenpairs(200)` for the defaults); otherwise the spectrum is computed. The
 /// initialisation's descriptors are recomputed on every call (they are not stored in the shape).
 /// The maps are then exactly those of the mesh-based overload with the same named parameters
 /// (`np`: the initialisation's parameters, as there), and can be passed to

@@ -64,6 +64,7 @@ namespace Surface_mesh_correspondence {
   X(ring_schedule_t, ring_schedule, ring_schedule)                                       \
   X(unary_weight_t, unary_weight, unary_weight)                                          \
   X(use_coupling_t, use_coupling, use_coupling)                                          \
+  X(consistency_weight_t, consistency_weight, consistency_weight)                        \
   X(number_of_outer_iterations_t, number_of_outer_iterations, number_of_outer_iterations)\
   X(trws_number_of_iterations_t, trws_number_of_iterations, trws_number_of_iterations)   \
   X(trws_relative_tolerance_t, trws_relative_tolerance, trws_relative_tolerance)         \
@@ -74,6 +75,7 @@ namespace Surface_mesh_correspondence {
   /* automatic initialisation */                                                         \
   X(spectral_basis_size_t, spectral_basis_size, spectral_basis_size)                     \
   X(zoomout_final_size_t, zoomout_final_size, zoomout_final_size)                        \
+  X(zoomout_pass_size_t, zoomout_pass_size, zoomout_pass_size)                           \
   X(zoomout_step_t, zoomout_step, zoomout_step)                                          \
   X(orientation_weight_t, orientation_weight, orientation_weight)                        \
   X(commutativity_weight_t, commutativity_weight, commutativity_weight)                  \
