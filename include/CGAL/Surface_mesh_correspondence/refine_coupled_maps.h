@@ -35,6 +35,9 @@ struct Refinement_settings
   int number_of_candidates = 20;            ///< m: labels per source vertex
   std::vector<int> ring_schedule = {6, 4, 3, 2, 1}; ///< r_j: candidate neighbourhood radius (rings) at outer iteration j
   double unary_weight = 0.03;               ///< mu: weight of the descriptor term against the geodesic term
+  /// lambda: weight of the cycle term lambda d_S(i, x_ba(k)) added to the unary cost of label k
+  /// of source vertex i (0: the paper's energy)
+  double consistency_weight = 1;
   bool use_coupling = true;                 ///< candidates from the inverse map too (false: the paper's non-coupled ablation)
   int number_of_outer_iterations = 0;       ///< 0: the length of the ring schedule
   int trws_number_of_iterations = 100;      ///< TRW-S iterations per solve
@@ -62,6 +65,8 @@ struct Refinement_settings
         choose_parameter(get_parameter(np, internal_np::number_of_candidates), s.number_of_candidates);
     s.ring_schedule = choose_parameter(get_parameter(np, internal_np::ring_schedule), s.ring_schedule);
     s.unary_weight = choose_parameter(get_parameter(np, internal_np::unary_weight), s.unary_weight);
+    s.consistency_weight =
+        choose_parameter(get_parameter(np, internal_np::consistency_weight), s.consistency_weight);
     s.use_coupling = choose_parameter(get_parameter(np, internal_np::use_coupling), s.use_coupling);
     s.number_of_outer_iterations = choose_parameter(get_parameter(np, internal_np::number_of_outer_iterations),
                                                     s.number_of_outer_iterations);
@@ -91,6 +96,9 @@ struct Refinement_settings
       if(r < 0) throw Invalid_parameter_error("ring_schedule holds a negative radius " + std::to_string(r));
     if(!(unary_weight >= 0) || !std::isfinite(unary_weight))
       throw Invalid_parameter_error("unary_weight = " + std::to_string(unary_weight) +
+                                    " must be finite and non-negative");
+    if(!(consistency_weight >= 0) || !std::isfinite(consistency_weight))
+      throw Invalid_parameter_error("consistency_weight = " + std::to_string(consistency_weight) +
                                     " must be finite and non-negative");
     if(number_of_outer_iterations < 0)
       throw Invalid_parameter_error("number_of_outer_iterations must be non-negative");
@@ -288,8 +296,8 @@ void select_candidates(const Shape_data& S, const Shape_data& T, const std::vect
 /// U(i, k) = mu |F_S(i) - F_T(k)|^2 (Eq. 2) and pairwise |d_S(i, j) - d_T(k, l)| (Eq. 3) with
 /// distances in units of sqrt(area) of each shape.
 template <typename ConcurrencyTag>
-void build_energy(const Shape_data& S, const Shape_data& T, const Refinement_settings& settings,
-                  Refinement_workspace& w)
+void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<int>& opposite,
+                  const Refinement_settings& settings, Refinement_workspace& w)
 {
   const int n = S.number_of_vertices();
   const Candidate_sets& C = w.candidates;
@@ -323,20 +331,30 @@ void build_energy(const Shape_data& S, const Shape_data& T, const Refinement_set
   w.energy.reset(w.label_counts, w.edges);
 
   const float mu = static_cast<float>(settings.unary_weight);
-  parallel_for_ranges<ConcurrencyTag>(
-      static_cast<std::size_t>(n),
-      [&](std::size_t b, std::size_t e) {
-        for(std::size_t u = b; u < e; ++u)
-        {
-          const int i = S.node_order[u];
-          float* costs = w.energy.unary_costs(u);
-          for(int k = C.offsets[u]; k < C.offsets[u + 1]; ++k)
-            costs[k - C.offsets[u]] = mu * (S.descriptors.row(i) - T.descriptors.row(C.labels[k])).squaredNorm();
-        }
-      },
-      256);
-
   const float source_unit = static_cast<float>(1.0 / S.scale), target_unit = static_cast<float>(1.0 / T.scale);
+  const float lambda = static_cast<float>(settings.consistency_weight) * source_unit;
+  std::visit(
+      [&](const auto& source_oracle) {
+        parallel_for_ranges<ConcurrencyTag>(
+            static_cast<std::size_t>(n),
+            [&](std::size_t b, std::size_t e) {
+              for(std::size_t u = b; u < e; ++u)
+              {
+                const int i = S.node_order[u];
+                float* costs = w.energy.unary_costs(u);
+                for(int k = C.offsets[u]; k < C.offsets[u + 1]; ++k)
+                {
+                  float c = mu * (S.descriptors.row(i) - T.descriptors.row(C.labels[k])).squaredNorm();
+                  // Cycle term: how far the opposite map sends candidate k from i.
+                  if(lambda > 0) c += lambda * source_oracle.distance(i, opposite[C.labels[k]]);
+                  costs[k - C.offsets[u]] = c;
+                }
+              }
+            },
+            256);
+      },
+      S.oracle);
+
   std::visit(
       [&](const auto& source_oracle) {
         std::visit(
@@ -372,7 +390,7 @@ void build_energy(const Shape_data& S, const Shape_data& T, const Refinement_set
 /// given `x_inverse` (the inverse of the opposite map, source -> target).
 template <typename ConcurrencyTag, typename Visitor>
 Refinement_step solve_direction(const Shape_data& S, const Shape_data& T, std::vector<int>& x,
-                                const std::vector<int>& x_inverse, int rings, const Refinement_settings& settings,
+                                const std::vector<int>& x_inverse, const std::vector<int>& opposite, int rings, const Refinement_settings& settings,
                                 int direction, Refinement_workspace& w, Visitor& visitor)
 {
   Refinement_step step;
@@ -380,7 +398,7 @@ Refinement_step solve_direction(const Shape_data& S, const Shape_data& T, std::v
   step.rings = rings;
   const auto t0 = std::chrono::steady_clock::now();
   select_candidates<ConcurrencyTag>(S, T, x, x_inverse, rings, settings, w.candidates);
-  build_energy<ConcurrencyTag>(S, T, settings, w);
+  build_energy<ConcurrencyTag>(S, T, opposite, settings, w);
   const auto t1 = std::chrono::steady_clock::now();
   step.data_preparation_seconds = std::chrono::duration<double>(t1 - t0).count();
 
@@ -449,7 +467,7 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
     auto solve = [&](const Shape_data& A, const Shape_data& B, std::vector<int>& x_ab, const std::vector<int>& x_ba,
                      int direction, Refinement_workspace& w) {
       const std::vector<int> inverse = inverse_map(A, B, x_ba, x_ab);
-      Refinement_step step = solve_direction<ConcurrencyTag>(A, B, x_ab, inverse, r, settings, direction, w, visitor);
+      Refinement_step step = solve_direction<ConcurrencyTag>(A, B, x_ab, inverse, x_ba, r, settings, direction, w, visitor);
       step.outer_iteration = t;
       step.inconsistent_vertices = inconsistency(x12, x21);
       result.steps.push_back(step);
@@ -547,6 +565,9 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 ///   - `ring_schedule` (std::vector<int>, default {6, 4, 3, 2, 1}; the paper used {6, 4, 3}):
 ///     candidate radius per outer iteration;
 ///   - `unary_weight` (double, default 0.03): \f$\mu\f$;
+///   - `consistency_weight` (double, default 1): \f$\lambda\f$, weight of the cycle term
+///     \f$\lambda\, d_S(i, x_{ba}(k))\f$ added to the unary cost of candidate k of source vertex i
+///     (distance relative to sqrt(area), x_ba the current opposite map; 0: the paper's energy);
 ///   - `use_neighbor_matches` (bool, default true): the matches of the source neighbours are
 ///     candidates too (propagation; false: the paper's candidate sets);
 ///   - `pairwise_rings` (int, default 1): pairwise terms between source vertices up to this many
