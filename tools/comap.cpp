@@ -189,8 +189,9 @@ int match(int argc, char** argv)
   smc::Coupled_refinement_result refinement;
   if(refine)
   {
-    progress.line("coupled refinement: " + std::to_string(settings.refinement.outer_iterations()) +
-                  " outer iterations at most, rings " + join(settings.refinement.ring_schedule) + ", " +
+    const smc::Refinement_settings resolved = resolved_refinement(settings, automatic);
+    progress.line("coupled refinement: " + std::to_string(resolved.outer_iterations()) +
+                  " outer iterations at most, rings " + join(resolved.ring_schedule) + ", " +
                   std::to_string(settings.refinement.number_of_candidates) + " candidates");
     refinement = refine_maps(*s1, *s2, map_12, map_21, settings, automatic, progress);
     progress.line("refinement done in " + duration(refinement.total_seconds) + " (" +

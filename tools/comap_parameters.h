@@ -46,9 +46,9 @@ auto refinement_parameters(const CGAL::Surface_mesh_correspondence::Refinement_s
       r.number_of_outer_iterations,
       p::stop_when_consistency_worsens(r.stop_when_consistency_worsens,
                                        p::keep_consistent_input_maps(r.keep_consistent_input_maps, solver)));
-  const auto terms = p::use_coupling(
+  const auto terms = p::consistency_weight(r.consistency_weight, p::use_coupling(
       r.use_coupling,
-      p::use_neighbor_matches(r.use_neighbor_matches, p::pairwise_rings(r.pairwise_rings, schedule)));
+      p::use_neighbor_matches(r.use_neighbor_matches, p::pairwise_rings(r.pairwise_rings, schedule))));
   return p::number_of_candidates(r.number_of_candidates,
                                  p::ring_schedule(r.ring_schedule, p::unary_weight(r.unary_weight, terms)));
 }

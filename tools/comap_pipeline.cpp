@@ -145,11 +145,10 @@ smc::Coupled_refinement_result refine_maps(const Prepared_shape& a, const Prepar
   Progress_visitor visitor;
   visitor.progress = &progress;
   visitor.label = label;
-  visitor.outer_iterations = settings.refinement.outer_iterations();
-  smc::Refinement_settings r = settings.refinement;
-  // Automatic switches: keep the input maps when they are given, stop early when they are automatic.
-  r.keep_consistent_input_maps = resolve_switch(settings.keep_consistent_input_maps, !automatic_input);
-  r.stop_when_consistency_worsens = resolve_switch(settings.stop_rule, automatic_input);
+  // Automatic choices: keep the input maps when they are given, stop early and use the short ring
+  // schedule when they are automatic.
+  const smc::Refinement_settings r = resolved_refinement(settings, automatic_input);
+  visitor.outer_iterations = r.outer_iterations();
   return smc::refine_coupled_maps<Concurrency>(*a.shape, *b.shape, map_12, map_21, refinement_parameters(r, visitor));
 }
 

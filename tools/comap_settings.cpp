@@ -67,11 +67,19 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           std::to_string(d.refinement.number_of_candidates),
           [&r](const std::string& v) { r.number_of_candidates = parse_int("--candidates", v, 1, 100000); });
   p.value("--rings", "R1,R2,...", "ring schedule: radius (in rings) of the candidate neighbourhoods at each outer "
-          "iteration; the last one repeats",
+          "iteration; the last one repeats (without --rings: " + join(d.automatic_ring_schedule) +
+          " for automatic initial maps)",
           join(d.refinement.ring_schedule),
-          [&r](const std::string& v) { r.ring_schedule = parse_int_list("--rings", v); });
+          [&r, &s](const std::string& v) {
+            r.ring_schedule = parse_int_list("--rings", v);
+            s.ring_schedule_given = true;
+          });
   p.value("--mu", "X", "weight of the descriptor (unary) term against the geodesic (pairwise) term",
           shortest(d.refinement.unary_weight), [&r](const std::string& v) { r.unary_weight = parse_double("--mu", v); });
+  p.value("--consistency-weight", "X", "weight of the cycle term: a candidate k of source vertex i costs X times the "
+          "geodesic distance (relative to sqrt(area)) from i to the opposite map's match of k (0: the paper's energy)",
+          shortest(d.refinement.consistency_weight),
+          [&r](const std::string& v) { r.consistency_weight = parse_double("--consistency-weight", v); });
   p.value("--outer-iterations", "N", "outer iterations (0: the length of the ring schedule)",
           std::to_string(d.refinement.number_of_outer_iterations),
           [&r](const std::string& v) { r.number_of_outer_iterations = parse_int("--outer-iterations", v, 0, 1000); });
@@ -165,6 +173,10 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   p.value("--init-basis", "K", "final ZoomOut basis size (the shapes need more vertices than this)",
           std::to_string(di.zoomout_final_size),
           [&in](const std::string& v) { in.zoomout_final_size = parse_int("--init-basis", v, 2, 100000); });
+  p.value("--init-pass-basis", "K", "basis size at which each pass (first and repair passes) ends its ZoomOut; the "
+          "kept maps then grow to --init-basis",
+          std::to_string(di.zoomout_pass_size),
+          [&in](const std::string& v) { in.zoomout_pass_size = parse_int("--init-pass-basis", v, 2, 100000); });
   p.value("--init-step", "N", "ZoomOut basis growth per iteration", std::to_string(di.zoomout_step),
           [&in](const std::string& v) { in.zoomout_step = parse_int("--init-step", v, 1, 100000); });
   p.value("--init-eigenpairs", "K", "eigenpairs for the initialisation (0: the final basis size)",
@@ -239,23 +251,33 @@ void check_settings(const Settings& s, bool with_initialization)
   }
 }
 
+smc::Refinement_settings resolved_refinement(const Settings& settings, bool automatic_input)
+{
+  smc::Refinement_settings r = settings.refinement;
+  r.keep_consistent_input_maps = resolve_switch(settings.keep_consistent_input_maps, !automatic_input);
+  r.stop_when_consistency_worsens = resolve_switch(settings.stop_rule, automatic_input);
+  if(automatic_input && !settings.ring_schedule_given) r.ring_schedule = settings.automatic_ring_schedule;
+  return r;
+}
+
 void write_settings(Json_writer& json, const std::string& key, const Settings& s, bool with_initialization,
                     bool automatic_input)
 {
   json.begin_object(key);
-  const smc::Refinement_settings& r = s.refinement;
+  const smc::Refinement_settings r = resolved_refinement(s, automatic_input);
   json.begin_object("refinement")
       .value("number_of_candidates", r.number_of_candidates)
       .value("ring_schedule", r.ring_schedule)
       .value("unary_weight", r.unary_weight)
+      .value("consistency_weight", r.consistency_weight)
       .value("number_of_outer_iterations", r.outer_iterations())
       .value("use_coupling", r.use_coupling)
       .value("use_neighbor_matches", r.use_neighbor_matches)
       .value("pairwise_rings", r.pairwise_rings)
       .value("stop_rule", automatic_switch_text(s.stop_rule, "none", "consistency"))
-      .value("stop_when_consistency_worsens", resolve_switch(s.stop_rule, automatic_input))
+      .value("stop_when_consistency_worsens", r.stop_when_consistency_worsens)
       .value("keep_input", automatic_switch_text(s.keep_consistent_input_maps, "off", "on"))
-      .value("keep_consistent_input_maps", resolve_switch(s.keep_consistent_input_maps, !automatic_input))
+      .value("keep_consistent_input_maps", r.keep_consistent_input_maps)
       .value("trws_number_of_iterations", r.trws_number_of_iterations)
       .value("trws_relative_tolerance", r.trws_relative_tolerance)
       .end_object();
@@ -288,6 +310,7 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
     json.end_array();
     json.value("selection_size", in.selection_size)
         .value("zoomout_final_size", in.zoomout_final_size)
+        .value("zoomout_pass_size", in.zoomout_pass_size)
         .value("zoomout_step", in.zoomout_step)
         .value("number_of_eigenpairs", smc::internal::initialization_number_of_eigenpairs(in))
         .value("wks_weight", in.wks_weight)
