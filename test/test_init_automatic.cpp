@@ -372,10 +372,14 @@ BOOST_AUTO_TEST_CASE(tear_repair_restores_swapped_limbs)
   BOOST_TEST(f.error_21(r21, f.pair.gt_21) < 0.015);
   BOOST_TEST(r.repair_passes >= 1);
   BOOST_TEST(r.torn_fraction < r.torn_fraction_before);
+  // The kept pass's maps (basis 120) grew to the final basis size.
+  BOOST_TEST(r.final_basis_size == 200);
+  BOOST_TEST(r.functional_map_12.rows() == 200);
   // Maps without tears are left alone.
   std::vector<std::size_t> t12 = f.pair.gt_12, t21 = f.pair.gt_21;
   const smc::Automatic_initialization_result t = smc::repair_torn_maps(f.pair.m1, f.pair.m2, t12, t21);
   BOOST_TEST(t.repair_passes == 0);
+  BOOST_TEST(t.final_basis_size == 0);  // no pass was kept: nothing to grow
   BOOST_TEST(t.torn_fraction_before < 0.005);
   BOOST_TEST(t12 == f.pair.gt_12);
   BOOST_TEST(t21 == f.pair.gt_21);
@@ -539,11 +543,11 @@ BOOST_AUTO_TEST_CASE(kept_maps_grow_from_the_pass_size_to_the_final_size)
   const Pair_fixture& f = asymmetric();
   std::vector<std::size_t> a12, a21, b12, b21, c12, c21;
   const smc::Automatic_initialization_result a = smc::automatic_initial_maps(
-      f.pair.m1, f.pair.m2, a12, a21, params::zoomout_final_size(80).zoomout_pass_size(80));
+      f.pair.m1, f.pair.m2, a12, a21, params::zoomout_final_size(80, params::zoomout_pass_size(80)));
   const smc::Automatic_initialization_result b = smc::automatic_initial_maps(
-      f.pair.m1, f.pair.m2, b12, b21, params::zoomout_final_size(160).zoomout_pass_size(80));
+      f.pair.m1, f.pair.m2, b12, b21, params::zoomout_final_size(160, params::zoomout_pass_size(80)));
   const smc::Automatic_initialization_result c = smc::automatic_initial_maps(
-      f.pair.m1, f.pair.m2, c12, c21, params::zoomout_final_size(120).zoomout_pass_size(80));
+      f.pair.m1, f.pair.m2, c12, c21, params::zoomout_final_size(120, params::zoomout_pass_size(80)));
   BOOST_TEST(a.final_basis_size == 80);
   BOOST_TEST(b.final_basis_size == 160);
   BOOST_TEST(b.functional_map_12.rows() == 160);

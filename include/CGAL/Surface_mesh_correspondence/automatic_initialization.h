@@ -83,12 +83,13 @@ struct Automatic_initialization_result
   int initial_basis_size = 0, final_basis_size = 0;
   /// Tear repair (see automatic_initial_maps()): the passes whose maps were kept (0: the first
   /// maps were kept), and the torn fraction (area cut off from the core by tears, mean of both
-  /// directions) of the first maps and of the returned ones.
+  /// directions) of the first maps and of the kept pass's maps (before their growth to the final
+  /// basis size).
   int repair_passes = 0;
   double torn_fraction_before = 0, torn_fraction = 0;
   /// Distortion repair (see automatic_initial_maps()): the passes whose maps were kept, and the
   /// geodesic distortion of the sample maps (mean of both directions) before the distortion repair
-  /// and of the returned maps.
+  /// and of the kept pass's maps (before their growth to the final basis size).
   int distortion_repair_passes = 0;
   double sample_distortion_before = 0, sample_distortion = 0;
   /// Passes run in all (fits and ZoomOut: the first one and the repair passes, kept or not).
@@ -323,12 +324,13 @@ inline int initialization_number_of_eigenpairs(const Initialization_settings& s)
   return s.number_of_eigenpairs > 0 ? s.number_of_eigenpairs : s.zoomout_final_size;
 }
 
-/// The leading eigenpairs that the WKS and HKS descriptors of the initialisation use: those of the
-/// passes (min(zoomout_final_size, zoomout_pass_size)), or all of them with an explicit
-/// number_of_eigenpairs. The descriptors, and so the passes, then do not depend on the final size.
-inline int initialization_descriptor_eigenpairs(const Initialization_settings& s)
+/// The basis size at which every pass ends its ZoomOut: zoomout_pass_size, at least the size at
+/// which the candidates are compared, at most zoomout_final_size.
+inline int pass_final_size(const Initialization_settings& s)
 {
-  return s.number_of_eigenpairs > 0 ? s.number_of_eigenpairs : std::min(s.zoomout_final_size, s.zoomout_pass_size);
+  const int kf = s.zoomout_final_size;
+  const int k_select = std::min(std::max(s.selection_size, largest_candidate_size(s)), kf);
+  return std::min(kf, std::max(s.zoomout_pass_size, k_select));
 }
 
 /// Column layout of initialization_descriptors(): d_wks WKS columns, d_hks HKS columns, then the
@@ -376,7 +378,8 @@ Eigen::MatrixXd initialization_descriptors(const Indexed_mesh& mesh, const Lapla
   const int n = spectrum.number_of_vertices();
   const Initialization_descriptor_layout l = initialization_descriptor_layout(s);
   Eigen::MatrixXd out(n, l.total());
-  const int k = std::min(initialization_descriptor_eigenpairs(s), spectrum.number_of_eigenpairs());
+  // The pass's eigenpairs only: the descriptors, and so the passes, do not depend on the final size.
+  const int k = std::min(pass_final_size(s), spectrum.number_of_eigenpairs());
   if(l.wks > 0)
     out.leftCols(l.wks) = wave_kernel_signature<ConcurrencyTag>(
         spectrum, parameters::number_of_wks_energies(
@@ -863,7 +866,6 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
 
   Automatic_initialization_result result;
   result.passes = 1;
-  result.final_basis_size = kf;
   const Laplace_beltrami_spectrum& S1 = *shape1.spectrum;
   const Laplace_beltrami_spectrum& S2 = *shape2.spectrum;
   const double A1 = S1.total_area(), A2 = S2.total_area();
@@ -1139,7 +1141,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   // ZoomOut from the selection size to the pass size (grow_initial_maps() goes on to the final
   // size once the pass is chosen).
   const Clock::time_point zoom_start = Clock::now();
-  zs.final_size = std::min(kf, std::max(s.zoomout_pass_size, k_select));
+  zs.final_size = pass_final_size(s);
   std::vector<int> t12, t21;
   if(s.coupled_zoomout)
     coupled_zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, mass2, C12, C21, zs, rows1, rows2,
@@ -1161,9 +1163,11 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
 }
 
 /// The last step of automatic_initial_maps(): the maps that were kept (computed by a pass with a
-/// ZoomOut to zoomout_pass_size) grow on to zoomout_final_size by the same ZoomOut, started from
+/// ZoomOut to pass_final_size()) grow on to zoomout_final_size by the same ZoomOut, started from
 /// the pass's final functional maps, with the user's landmarks (not those of a repair pass: the
-/// maps already follow them). Nothing happens when the maps are already of the final size.
+/// maps already follow them) and without descriptor features (zoomout_descriptor_weight, 0 by
+/// default, applies to the passes only). Nothing happens when the maps are already of the final
+/// size. The torn fraction and the sample distortion of the result stay those of the kept pass.
 template <typename ConcurrencyTag>
 void grow_initial_maps(const Initialization_shape& shape1, const Initialization_shape& shape2,
                        const Initialization_settings& s, const Initialization_pass_cache& cache,
@@ -1538,16 +1542,17 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// \f$ C_{12} \f$ and \f$ C_{21} \f$ of size `spectral_basis_size`, each minimising the energy of
 /// fit_functional_map() (descriptor preservation, Laplacian and descriptor commutativity, and the
 /// orientation-preserving term of Ren et al. 2018, which rules out left/right mirror maps); then a
-/// coupled ZoomOut (Melzi et al. 2019) that grows both maps to `zoomout_final_size`, each step
+/// coupled ZoomOut (Melzi et al. 2019) that grows both maps to `zoomout_pass_size`, each step
 /// matching every vertex to its nearest neighbour in the joint embedding
 /// \f$ [\Phi_1 C_{12}, \Phi_1] \f$ vs. \f$ [\Phi_2, \Phi_2 C_{21}] \f$ (which favours inverse
-/// pairs of maps) and refitting. Finally the tear repair: maps that swap two parts of a
+/// pairs of maps) and refitting. Then the tear repair: maps that swap two parts of a
 /// symmetric body (limbs, feet) tear where a swapped part meets the rest; when the regions cut off
 /// by the tears exceed 1% of a mesh, the maps are computed again with landmarks sampled in the
 /// largest region of each map (see repair_torn_maps()), and kept when they are less torn. Optionally
 /// (`number_of_distortion_repair_passes`) the distortion repair: maps that distort the geodesic
 /// distances of farthest-point samples by more than 0.035 on average are computed again with
-/// landmarks in their isometric core, and kept when they distort at least 20% less.
+/// landmarks in their isometric core, and kept when they distort at least 20% less. Finally the
+/// kept maps grow by the same coupled ZoomOut to `zoomout_final_size` (grow_initial_maps()).
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
 /// orientations (signed volumes of opposite signs) the orientation term is reversed
