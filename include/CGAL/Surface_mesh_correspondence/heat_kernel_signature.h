@@ -69,7 +69,7 @@ Eigen::MatrixXd heat_kernel_signature(const Eigen::VectorXd& eigenvalues,
 /// eigenvalues \f$ \lambda_j A \f$ of the surface scaled to area 1):
 /// `number_of_hks_scales` times log-spaced from \f$ 4 \ln 10 / \lambda'_{\max} \f$ to
 /// \f$ 4 \ln 10 / \lambda'_1 \f$, where \f$ \lambda' = \lambda A \f$, \f$ \lambda'_1 \f$ is the first
-/// non-zero eigenvalue and \f$ \lambda'_{\max} \f$ the largest computed one.
+/// non-zero eigenvalue and \f$ \lambda'_{\max} \f$ the largest one used (the k-th, see `number_of_eigenpairs`).
 /// \tparam NamedParameters a sequence of named parameters
 /// \param spectrum the spectrum
 /// \param np optional named parameters among:
@@ -105,8 +105,8 @@ Eigen::VectorXd heat_kernel_signature_times(const Laplace_beltrami_spectrum& spe
 /// descriptors). For the times \f$ t_c \f$ of heat_kernel_signature_times(), column c is
 /// \f[ \mathrm{HKS}(x, t_c) = \frac{\sum_{j} e^{-\lambda'_j t_c} \phi'_j(x)^2}
 ///                              {\sum_{j} e^{-\lambda'_j t_c}}, \f]
-/// the heat kernel diagonal divided by the (truncated) heat trace. Sums run over all k computed
-/// eigenpairs (zero eigenvalues included). Each column has unit mean over the surface:
+/// the heat kernel diagonal divided by the (truncated) heat trace. Sums run over the k
+/// eigenpairs used (zero eigenvalues included). Each column has unit mean over the surface:
 /// \f$ \sum_i (M_{ii}/A)\,\mathrm{HKS}(x_i, t) = 1 \f$. For raw values use the overload taking
 /// eigenvalues, eigenvectors and times.
 ///

@@ -36,9 +36,9 @@ struct Refinement_settings
   std::vector<int> ring_schedule = {6, 4, 3, 2, 1}; ///< r_j: candidate neighbourhood radius (rings) at outer iteration j
   double unary_weight = 0.03;               ///< mu: weight of the descriptor term against the geodesic term
   /// lambda: weight of the cycle term lambda d_S(i, x_ba(k)) added to the unary cost of label k
-  /// of source vertex i (0: the paper's energy)
+  /// of source vertex i (0: the paper's energy; not used without coupling)
   double consistency_weight = 1;
-  bool use_coupling = true;                 ///< candidates from the inverse map too (false: the paper's non-coupled ablation)
+  bool use_coupling = true;                 ///< candidates from the inverse map and the cycle term (false: the paper's non-coupled ablation)
   int number_of_outer_iterations = 0;       ///< 0: the length of the ring schedule
   int trws_number_of_iterations = 100;      ///< TRW-S iterations per solve
   double trws_relative_tolerance = 1e-4;    ///< TRW-S stops when the bound's relative change is below this
@@ -293,8 +293,9 @@ void select_candidates(const Shape_data& S, const Shape_data& T, const std::vect
 
 /// Builds the MRF of one direction in `w.energy`: nodes = source vertices (breadth-first order),
 /// edges = source mesh edges, labels = the candidate sets; unary
-/// U(i, k) = mu |F_S(i) - F_T(k)|^2 (Eq. 2) and pairwise |d_S(i, j) - d_T(k, l)| (Eq. 3) with
-/// distances in units of sqrt(area) of each shape.
+/// U(i, k) = mu |F_S(i) - F_T(k)|^2 (Eq. 2) + lambda d_S(i, opposite(k)) (the cycle term, with
+/// coupling only; `opposite` is the current map target -> source) and pairwise
+/// |d_S(i, j) - d_T(k, l)| (Eq. 3), with distances in units of sqrt(area) of each shape.
 template <typename ConcurrencyTag>
 void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<int>& opposite,
                   const Refinement_settings& settings, Refinement_workspace& w)
@@ -332,7 +333,9 @@ void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<in
 
   const float mu = static_cast<float>(settings.unary_weight);
   const float source_unit = static_cast<float>(1.0 / S.scale), target_unit = static_cast<float>(1.0 / T.scale);
-  const float lambda = static_cast<float>(settings.consistency_weight) * source_unit;
+  // The cycle term uses the opposite map: part of the coupling (off in the non-coupled ablation).
+  const float lambda =
+      settings.use_coupling ? static_cast<float>(settings.consistency_weight) * source_unit : 0.0f;
   std::visit(
       [&](const auto& source_oracle) {
         parallel_for_ranges<ConcurrencyTag>(
@@ -387,11 +390,13 @@ void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<in
 }
 
 /// One MRF solve (paper, function MAP of Algorithm 1): refines `x` (source -> target) in place
-/// given `x_inverse` (the inverse of the opposite map, source -> target).
+/// given the opposite map `opposite` (target -> source, for the cycle term) and its inverse
+/// `x_inverse` (source -> target, for the candidates).
 template <typename ConcurrencyTag, typename Visitor>
 Refinement_step solve_direction(const Shape_data& S, const Shape_data& T, std::vector<int>& x,
-                                const std::vector<int>& x_inverse, const std::vector<int>& opposite, int rings, const Refinement_settings& settings,
-                                int direction, Refinement_workspace& w, Visitor& visitor)
+                                const std::vector<int>& x_inverse, const std::vector<int>& opposite, int rings,
+                                const Refinement_settings& settings, int direction, Refinement_workspace& w,
+                                Visitor& visitor)
 {
   Refinement_step step;
   step.direction = direction;
@@ -545,8 +550,10 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 ///
 /// Each outer iteration j solves, for the map 1 -> 2 and then for the map 2 -> 1 (each using the
 /// newest opposite map), the sparse relaxed quadratic assignment problem
-/// \f[ \min_{x} \; \mu \sum_i \| F_a(i) - F_b(x(i)) \|^2
+/// \f[ \min_{x} \; \sum_i \big( \mu \| F_a(i) - F_b(x(i)) \|^2 + \lambda\, d_a(i, y(x(i))) \big)
 ///       + \sum_{(i,j) \in E_a} \big| d_a(i,j) - d_b(x(i), x(j)) \big| , \qquad x(i) \in \Phi(i), \f]
+/// (y the current opposite map; the cycle term with \f$ \lambda \f$ is ours, 0 gives the paper's
+/// energy)
 /// as a Markov random field with TRW-S, where \f$ \Phi(i) \f$ is a farthest point sampling of
 /// m target vertices in the union of the \f$ r_j \f$-ring neighbourhoods of the current match
 /// \f$ x(i) \f$ and of the inverse of the opposite map \f$ \tilde x(i) \f$ (both always kept).
@@ -567,7 +574,8 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 ///   - `unary_weight` (double, default 0.03): \f$\mu\f$;
 ///   - `consistency_weight` (double, default 1): \f$\lambda\f$, weight of the cycle term
 ///     \f$\lambda\, d_S(i, x_{ba}(k))\f$ added to the unary cost of candidate k of source vertex i
-///     (distance relative to sqrt(area), x_ba the current opposite map; 0: the paper's energy);
+///     (distance relative to sqrt(area), x_ba the current opposite map; 0: the paper's energy;
+///     not used without coupling);
 ///   - `use_neighbor_matches` (bool, default true): the matches of the source neighbours are
 ///     candidates too (propagation; false: the paper's candidate sets);
 ///   - `pairwise_rings` (int, default 1): pairwise terms between source vertices up to this many

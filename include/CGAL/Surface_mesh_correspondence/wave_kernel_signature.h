@@ -93,7 +93,7 @@ Eigen::MatrixXd wave_kernel_signature(const Eigen::VectorXd& eigenvalues,
 /// The automatic WKS energies of a spectrum, in unit-area units: with
 /// \f$ \lambda' = \lambda A \f$, `number_of_wks_energies` = d log-energies evenly spaced from
 /// \f$ \log\lambda'_1 \f$ (first non-zero eigenvalue) to \f$ \log\lambda'_{\max} \f$ (largest
-/// computed one), step \f$ \delta = (\log\lambda'_{\max} - \log\lambda'_1)/(d-1) \f$, and
+/// one used, the k-th), step \f$ \delta = (\log\lambda'_{\max} - \log\lambda'_1)/(d-1) \f$, and
 /// \f$ \sigma = \f$ `wks_variance` \f$ \times \delta \f$ (Aubry et al. 2011). With d = 1 the single
 /// energy is the midpoint and \f$ \delta \f$ the whole range.
 /// \tparam NamedParameters a sequence of named parameters
