@@ -125,6 +125,27 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   BOOST_TEST(read_map(in_scratch("a12.map"), 1) == l12);
   BOOST_TEST(read_map(in_scratch("a21.map"), 1) == l21);
   BOOST_TEST_MESSAGE("automatic initial map 1->2: mean error " << mean_error(p.pair.m2, l12, p.pair.gt_12));
+  // --init-pass-basis: passes end at 40, the kept maps grow to 60, as in the library.
+  const Run grown = comap("match " + p.a + " " + p.b + " --no-refine --init-basis 60 --init-pass-basis 40 --quiet" +
+                          " --out-12 " + in_scratch("g12.map") + " --out-21 " + in_scratch("g21.map"));
+  BOOST_TEST_REQUIRE(grown.code == 0, grown.err);
+  std::vector<std::size_t> g12, g21;
+  smc::automatic_initial_maps<Tag>(p.pair.m1, p.pair.m2, g12, g21,
+                                   smc::parameters::zoomout_final_size(60, smc::parameters::zoomout_pass_size(40)));
+  BOOST_TEST(read_map(in_scratch("g12.map"), 1) == g12);
+  BOOST_TEST(read_map(in_scratch("g21.map"), 1) == g21);
+  BOOST_TEST(g12 != l12);
+
+  // Without --rings, automatic maps are refined with the short schedule 3,2,1 (given maps with
+  // 6,4,3,2,1), and the cycle term's weight is recorded.
+  std::string no_rings = fast_options();
+  no_rings.erase(no_rings.find(" --rings 3,2"), std::string(" --rings 3,2").size());
+  const Run short_schedule = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch("s12.map") + " --out-21 " +
+                                   in_scratch("s21.map") + " --stats " + in_scratch("short.json") +
+                                   " --consistency-weight 0.75" + no_rings);
+  BOOST_TEST_REQUIRE(short_schedule.code == 0, short_schedule.err);
+  BOOST_TEST(read_text(in_scratch("short.json")).find("\"ring_schedule\": [3, 2, 1]") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("short.json")).find("\"consistency_weight\": 0.75") != std::string::npos);
 
   // Automatic maps with the fast settings, then the whole pipeline with them.
   const Run fast_init = comap("match " + p.a + " " + p.b + " --no-refine --out-12 " + in_scratch("b12.map") +

@@ -95,8 +95,8 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           [&r](const std::string& v) { r.pairwise_rings = parse_int("--pairwise-rings", v, 1, 10); });
   p.value("--stop-rule", "auto|consistency|none", "consistency: stop when the cycle-consistency error of Eq. (4) "
           "grows; none: run every outer iteration (the most consistent maps are returned either way); auto: "
-          "consistency for automatic initial maps (no refined iterate is more consistent than they are), none for "
-          "given ones",
+          "consistency for automatic initial maps (their refined iterates become more consistent at each outer "
+          "iteration with the cycle term), none for given ones",
           "auto", [&s](const std::string& v) { s.stop_rule = parse_automatic_switch("--stop-rule", v, "none", "consistency"); });
   p.value("--keep-input", "auto|on|off",
           "on: return the input maps unchanged when no refined iterate is more consistent (the paper's rule); "
