@@ -403,6 +403,10 @@ bool parse(int argc, char** argv, Options& o)
     else if(a == "--procrustes") s.procrustes = std::stoi(next()) != 0;
     else if(a == "--kf") s.zoomout_final_size = std::stoi(next());
     else if(a == "--step") s.zoomout_step = std::stoi(next());
+    else if(a == "--gstep") s.zoomout_growth_step = std::stoi(next());
+    else if(a == "--pass") s.zoomout_pass_size = std::stoi(next());
+    else if(a == "--repairs") s.tear_repair_passes = std::stoi(next());
+    else if(a == "--drepair") s.distortion_repair_passes = std::stoi(next());
     else if(a == "--eig") s.number_of_eigenpairs = std::stoi(next());
     else if(a == "--wl") s.weights.laplacian = std::stod(next());
     else if(a == "--hks") s.hks_weight = std::stod(next());

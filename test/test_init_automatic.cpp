@@ -131,6 +131,50 @@ BOOST_AUTO_TEST_CASE(identity_map_gives_identity_matrix_and_back)
   BOOST_CHECK_THROW(smc::functional_map_from_point_map(s, s, id, 30, 30), smc::Invalid_map_error);
 }
 
+BOOST_AUTO_TEST_CASE(zoomout_fit_solves_the_weighted_least_squares_problem)
+{
+  // The ZoomOut refit on sampled rows with landmarks: C minimises
+  //   sum_r w |Phi_S(x_r) C - Phi_T(T(x_r))|^2 + l sum_landmarks |Phi_S(a) C - Phi_T(b)|^2
+  // (w = total mass / number of rows). Reference: a QR solve of the stacked, weighted system.
+  const Mesh m = bumpy_capsule(16, 4, 10);
+  const smc::Laplace_beltrami_spectrum s(m, params::number_of_eigenpairs(30));
+  const Eigen::MatrixXd basis = smc::internal::unit_area_basis(s, 30);
+  const Eigen::VectorXd mass = smc::internal::unit_area_mass(s);
+  const int n = int(num_vertices(m)), ks = 24, kt = 20;
+  std::vector<int> rows, map_rows;
+  for(int v = 0; v < n; v += 3) rows.push_back(v);
+  for(std::size_t r = 0; r < rows.size(); ++r) map_rows.push_back(int((7 * r + 11) % std::size_t(n)));
+  const std::vector<std::pair<int, int> > landmarks{{5, 40}, {100, 3}};
+  const double l = 0.3;
+  const smc::internal::Zoomout_fitter fitter(basis, mass, rows, landmarks, l);
+  const Eigen::MatrixXd C = fitter.fit(map_rows, basis, ks, kt);
+  const std::size_t q = rows.size() + landmarks.size();
+  Eigen::MatrixXd A(q, ks), B(q, kt);
+  const double w = std::sqrt(mass.sum() / double(rows.size()));
+  for(std::size_t r = 0; r < rows.size(); ++r)
+  {
+    A.row(r) = w * basis.row(rows[r]).head(ks);
+    B.row(r) = w * basis.row(map_rows[r]).head(kt);
+  }
+  for(std::size_t i = 0; i < landmarks.size(); ++i)
+  {
+    A.row(rows.size() + i) = std::sqrt(l) * basis.row(landmarks[i].first).head(ks);
+    B.row(rows.size() + i) = std::sqrt(l) * basis.row(landmarks[i].second).head(kt);
+  }
+  const Eigen::MatrixXd reference = A.colPivHouseholderQr().solve(B);
+  BOOST_TEST(C.rows() == ks);
+  BOOST_TEST(C.cols() == kt);
+  BOOST_TEST((C - reference).norm() < 1e-6 * reference.norm());
+  // On all vertices without landmarks the fit is the projection Phi_S^T M Pi Phi_T.
+  const smc::internal::Zoomout_fitter full(basis, mass, std::vector<int>(), {}, l);
+  std::vector<int> all(static_cast<std::size_t>(n));
+  for(int v = 0; v < n; ++v) all[std::size_t(v)] = (v * 13 + 5) % n;
+  Eigen::MatrixXd pulled(n, kt);
+  for(int v = 0; v < n; ++v) pulled.row(v) = basis.row(all[std::size_t(v)]).head(kt);
+  const Eigen::MatrixXd projection = basis.leftCols(ks).transpose() * mass.asDiagonal() * pulled;
+  BOOST_TEST((full.fit(all, basis, ks, kt) - projection).norm() < 1e-10 * projection.norm());
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(automatic_initialization)

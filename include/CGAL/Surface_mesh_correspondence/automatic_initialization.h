@@ -28,10 +28,6 @@
 #include <CGAL/assertions.h>
 #include <CGAL/tags.h>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/parallel_invoke.h>
-#endif
-
 #include <Eigen/Core>
 #include <Eigen/SVD>
 
@@ -131,6 +127,10 @@ struct Initialization_settings
   /// are kept then grow on to zoomout_final_size (grow_initial_maps()).
   int zoomout_pass_size = 120;
   int zoomout_step = 5;                  ///< ZoomOut basis growth per iteration
+  /// ZoomOut basis growth per iteration from zoomout_pass_size to zoomout_final_size
+  /// (grow_initial_maps()). Coarser than zoomout_step: the growth costs most at these sizes
+  /// (TOSCA_r, every 8th pair: steps of 5, 10, 20 give 0.0260, 0.0263, 0.0266).
+  int zoomout_growth_step = 10;
   int number_of_eigenpairs = 0;          ///< eigenpairs computed (0: zoomout_final_size)
   // Descriptors.
   int number_of_wks_energies = 100;
@@ -218,6 +218,7 @@ Initialization_settings initialization_settings(const NamedParameters& np)
                                           s.zoomout_final_size);
   s.zoomout_pass_size = choose_parameter(get_parameter(np, internal_np::zoomout_pass_size), s.zoomout_pass_size);
   s.zoomout_step = choose_parameter(get_parameter(np, internal_np::zoomout_step), s.zoomout_step);
+  s.zoomout_growth_step = choose_parameter(get_parameter(np, internal_np::zoomout_growth_step), s.zoomout_growth_step);
   s.number_of_eigenpairs = choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs),
                                             s.number_of_eigenpairs);
   s.number_of_wks_energies = choose_parameter(get_parameter(np, internal_np::number_of_wks_energies),
@@ -289,6 +290,8 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if((s.select_by_distortion || s.distortion_repair_passes > 0) && s.distortion_samples < 2)
     fail("distortion_samples = " + std::to_string(s.distortion_samples) + " must be at least 2");
   if(s.zoomout_step < 1) fail("zoomout_step = " + std::to_string(s.zoomout_step) + " must be positive");
+  if(s.zoomout_growth_step < 1)
+    fail("zoomout_growth_step = " + std::to_string(s.zoomout_growth_step) + " must be positive");
   if(s.zoomout_pass_size < 2)
     fail("zoomout_pass_size = " + std::to_string(s.zoomout_pass_size) + " must be at least 2");
   if(s.number_of_eigenpairs != 0 && s.number_of_eigenpairs < s.zoomout_final_size)
@@ -324,13 +327,53 @@ inline int initialization_number_of_eigenpairs(const Initialization_settings& s)
   return s.number_of_eigenpairs > 0 ? s.number_of_eigenpairs : s.zoomout_final_size;
 }
 
-/// The basis size at which every pass ends its ZoomOut: zoomout_pass_size, at least the size at
-/// which the candidates are compared, at most zoomout_final_size.
+/// The basis size at which the fit candidates are compared: selection_size, at least the largest
+/// candidate, at most zoomout_final_size.
+inline int selection_basis_size(const Initialization_settings& s)
+{
+  return std::min(std::max(s.selection_size, largest_candidate_size(s)), s.zoomout_final_size);
+}
+
+/// The basis size at which every pass ends its ZoomOut: zoomout_pass_size, at least
+/// selection_basis_size(), at most zoomout_final_size.
 inline int pass_final_size(const Initialization_settings& s)
 {
-  const int kf = s.zoomout_final_size;
-  const int k_select = std::min(std::max(s.selection_size, largest_candidate_size(s)), kf);
-  return std::min(kf, std::max(s.zoomout_pass_size, k_select));
+  return std::min(s.zoomout_final_size, std::max(s.zoomout_pass_size, selection_basis_size(s)));
+}
+
+/// The ZoomOut schedule of the initialisation from `step` to `final_size`.
+inline Zoomout_settings initialization_zoomout_settings(const Initialization_settings& s, int step, int final_size)
+{
+  Zoomout_settings zs;
+  zs.step = step;
+  zs.final_size = final_size;
+  zs.landmark_weight = s.zoomout_landmark_weight;
+  zs.bijectivity_weight = s.zoomout_bijectivity_weight;
+  zs.feature_final_ratio = s.zoomout_descriptor_final_ratio;
+  return zs;
+}
+
+/// ZoomOut of both functional maps of a pair (unit-area bases and masses), coupled or one
+/// direction at a time as `coupled_zoomout` says: C12 and C21 are replaced by the final maps,
+/// t12 and t21 receive the point maps of all vertices.
+template <typename ConcurrencyTag>
+void zoomout_pair(const Eigen::MatrixXd& basis1, const Eigen::VectorXd& mass1, const Eigen::MatrixXd& basis2,
+                  const Eigen::VectorXd& mass2, const Initialization_settings& s, const Zoomout_settings& zs,
+                  const std::vector<int>& rows1, const std::vector<int>& rows2,
+                  const std::vector<std::pair<int, int> >& landmarks, Eigen::MatrixXd& C12, Eigen::MatrixXd& C21,
+                  std::vector<int>& t12, std::vector<int>& t21, const Zoomout_features& features12 = Zoomout_features(),
+                  const Zoomout_features& features21 = Zoomout_features())
+{
+  if(s.coupled_zoomout)
+  {
+    coupled_zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, mass2, C12, C21, zs, rows1, rows2, landmarks, t12,
+                                           t21, features12);
+    return;
+  }
+  std::vector<std::pair<int, int> > landmarks21;
+  for(const auto& l : landmarks) landmarks21.emplace_back(l.second, l.first);
+  C12 = zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, C12, zs, rows1, landmarks, t12, features12);
+  C21 = zoomout_refine<ConcurrencyTag>(basis2, mass2, basis1, C21, zs, rows2, landmarks21, t21, features21);
 }
 
 /// Column layout of initialization_descriptors(): d_wks WKS columns, d_hks HKS columns, then the
@@ -781,21 +824,6 @@ struct Initialization_pass_cache
   Initialization_sampling first, second;
 };
 
-/// Runs a and b, concurrently with Parallel_tag.
-template <typename ConcurrencyTag, typename A, typename B>
-void invoke_both(const A& a, const B& b)
-{
-#ifdef CGAL_LINKED_WITH_TBB
-  if(Is_parallel<ConcurrencyTag>::value)
-  {
-    tbb::parallel_invoke(a, b);
-    return;
-  }
-#endif
-  a();
-  b();
-}
-
 /// Fills `cache` with the samplings of both shapes, unless it holds them for these settings.
 template <typename ConcurrencyTag>
 void prepare_pass_cache(const Initialization_shape& shape1, const Initialization_shape& shape2,
@@ -973,11 +1001,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
     features12.source = features21.target = &features1;
     features12.target = features21.source = &features2;
   }
-  Zoomout_settings zs;
-  zs.step = s.zoomout_step;
-  zs.landmark_weight = s.zoomout_landmark_weight;
-  zs.bijectivity_weight = s.zoomout_bijectivity_weight;
-  zs.feature_final_ratio = s.zoomout_descriptor_final_ratio;
+  const Zoomout_settings select_settings = initialization_zoomout_settings(s, s.zoomout_step, selection_basis_size(s));
 
   // Candidates: fits of both directions for every configuration (and, with landmarks, for both
   // orientations), each refined by a short ZoomOut to the selection size and scored by the
@@ -998,9 +1022,6 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   for(int sign : signs)
     for(const Fit_candidate& c : s.candidates)
       if(c.basis_size <= kf) candidates.push_back({c, sign, -1, {}, {}, {}, {}});
-  const int k_select = std::min(std::max(s.selection_size, kmax), kf);
-  Zoomout_settings select_settings = zs;
-  select_settings.final_size = k_select;
   auto score = [&](const Eigen::MatrixXd& Da, const Eigen::MatrixXd& Db, const std::vector<int>& rows,
                    const std::vector<int>& map_rows) {
     double total = 0;
@@ -1141,16 +1162,10 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   // ZoomOut from the selection size to the pass size (grow_initial_maps() goes on to the final
   // size once the pass is chosen).
   const Clock::time_point zoom_start = Clock::now();
-  zs.final_size = pass_final_size(s);
+  const Zoomout_settings zs = initialization_zoomout_settings(s, s.zoomout_step, pass_final_size(s));
   std::vector<int> t12, t21;
-  if(s.coupled_zoomout)
-    coupled_zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, mass2, C12, C21, zs, rows1, rows2,
-                                           landmarks, t12, t21, features12);
-  else
-  {
-    C12 = zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, C12, zs, rows1, landmarks, t12, features12);
-    C21 = zoomout_refine<ConcurrencyTag>(basis2, mass2, basis1, C21, zs, rows2, landmarks21, t21, features21);
-  }
+  zoomout_pair<ConcurrencyTag>(basis1, mass1, basis2, mass2, s, zs, rows1, rows2, landmarks, C12, C21, t12, t21,
+                               features12, features21);
   result.zoomout_seconds = seconds_since(zoom_start);
   result.final_basis_size = zs.final_size;
   set_initial_maps(m1, m2, t12, t21, C12, C21, map_12, map_21, result);
@@ -1181,29 +1196,12 @@ void grow_initial_maps(const Initialization_shape& shape1, const Initialization_
   const Indexed_mesh& m2 = *shape2.mesh;
   const Eigen::MatrixXd basis1 = unit_area_basis(*shape1.spectrum, kf), basis2 = unit_area_basis(*shape2.spectrum, kf);
   const Eigen::VectorXd mass1 = unit_area_mass(*shape1.spectrum), mass2 = unit_area_mass(*shape2.spectrum);
-  std::vector<std::pair<int, int> > landmarks, landmarks21;
-  for(const auto& l : s.landmarks)
-  {
-    landmarks.emplace_back(int(l.first), int(l.second));
-    landmarks21.emplace_back(int(l.second), int(l.first));
-  }
-  Zoomout_settings zs;
-  zs.step = s.zoomout_step;
-  zs.final_size = kf;
-  zs.landmark_weight = s.zoomout_landmark_weight;
-  zs.bijectivity_weight = s.zoomout_bijectivity_weight;
+  std::vector<std::pair<int, int> > landmarks;
+  for(const auto& l : s.landmarks) landmarks.emplace_back(int(l.first), int(l.second));
   Eigen::MatrixXd C12 = result.functional_map_12, C21 = result.functional_map_21;
-  const std::vector<int>& rows1 = cache.first.samples.rows;
-  const std::vector<int>& rows2 = cache.second.samples.rows;
   std::vector<int> t12, t21;
-  if(s.coupled_zoomout)
-    coupled_zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, mass2, C12, C21, zs, rows1, rows2, landmarks, t12,
-                                           t21);
-  else
-  {
-    C12 = zoomout_refine<ConcurrencyTag>(basis1, mass1, basis2, C12, zs, rows1, landmarks, t12);
-    C21 = zoomout_refine<ConcurrencyTag>(basis2, mass2, basis1, C21, zs, rows2, landmarks21, t21);
-  }
+  zoomout_pair<ConcurrencyTag>(basis1, mass1, basis2, mass2, s, initialization_zoomout_settings(s, s.zoomout_growth_step, kf),
+                               cache.first.samples.rows, cache.second.samples.rows, landmarks, C12, C21, t12, t21);
   set_initial_maps(m1, m2, t12, t21, C12, C21, map_12, map_21, result);
   result.final_basis_size = kf;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

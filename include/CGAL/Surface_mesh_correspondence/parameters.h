@@ -77,6 +77,7 @@ namespace Surface_mesh_correspondence {
   X(zoomout_final_size_t, zoomout_final_size, zoomout_final_size)                        \
   X(zoomout_pass_size_t, zoomout_pass_size, zoomout_pass_size)                           \
   X(zoomout_step_t, zoomout_step, zoomout_step)                                          \
+  X(zoomout_growth_step_t, zoomout_growth_step, zoomout_growth_step)                     \
   X(orientation_weight_t, orientation_weight, orientation_weight)                        \
   X(commutativity_weight_t, commutativity_weight, commutativity_weight)                  \
   X(landmarks_t, landmarks, landmarks)                                                   \

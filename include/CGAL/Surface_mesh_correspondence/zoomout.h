@@ -124,13 +124,13 @@ public:
                       int kt) const
   {
     const std::size_t m = number_of_rows();
-    Eigen::MatrixXd weighted(m, ks), pulled(m, kt);
+    Eigen::MatrixXd sampled(m, ks), pulled(m, kt);
     for(std::size_t r = 0; r < m; ++r)
     {
-      const int x = row_vertex(r);
-      weighted.row(r) = weights_[r] * basis_.row(x).head(ks);
+      sampled.row(r) = basis_.row(row_vertex(r)).head(ks);
       pulled.row(r) = target_basis.row(map_rows[r]).head(kt);
     }
+    const Eigen::MatrixXd weighted = weights_.asDiagonal() * sampled;
     Eigen::MatrixXd rhs = weighted.transpose() * pulled;
     const bool orthonormal = all_rows_ && landmarks_.empty();
     if(orthonormal) return rhs;  // Phi^T M Phi = I
@@ -138,11 +138,7 @@ public:
     if(all_rows_)
       gram.setIdentity();
     else
-    {
-      gram.setZero();
-      for(std::size_t r = 0; r < m; ++r)
-        gram.noalias() += basis_.row(row_vertex(r)).head(ks).transpose() * weighted.row(r);
-    }
+      gram.noalias() = sampled.transpose() * weighted;
     for(const auto& l : landmarks_)
     {
       const Eigen::RowVectorXd phi = basis_.row(l.first).head(ks);
@@ -247,23 +243,27 @@ void coupled_zoomout_refine(const Eigen::MatrixXd& basis1, const Eigen::VectorXd
   const Zoomout_fitter full2(basis2, mass2, std::vector<int>(), landmarks21, settings.landmark_weight);
   const double a = std::sqrt(std::max(0.0, settings.bijectivity_weight));
   std::vector<int> rows_map12, rows_map21;
-  // [Phi C, a Phi] (query side) or [Phi, a Phi C] (data side).
-  auto embed = [a](const Eigen::MatrixXd& basis, const Eigen::MatrixXd& C, bool query) {
-    const Eigen::Index k = C.rows();
-    Eigen::MatrixXd e(basis.rows(), 2 * k);
-    const Eigen::MatrixXd mapped = basis.leftCols(k) * C;
-    e.leftCols(k) = query ? mapped : Eigen::MatrixXd(basis.leftCols(k));
-    e.rightCols(k) = a * (query ? Eigen::MatrixXd(basis.leftCols(k)) : mapped);
+  // [left, a right]: the query side of mesh 1 is [Phi_1 C_12, a Phi_1], its data side
+  // [Phi_1, a Phi_1 C_12] (and the same for mesh 2).
+  auto join = [a](const Eigen::MatrixXd& left, const Eigen::MatrixXd& right) {
+    Eigen::MatrixXd e(left.rows(), left.cols() + right.cols());
+    e.leftCols(left.cols()) = left;
+    e.rightCols(right.cols()) = a * right;
     return e;
   };
   for(std::size_t s = 0;; ++s)
   {
     const bool last = s + 1 == sizes.size();
     const double f = features.empty() ? 0.0 : zoomout_feature_scale(settings, s, sizes.size());
-    const Eigen::MatrixXd q1 = append_features(embed(basis1, C12, true), features.source, f);
-    const Eigen::MatrixXd d2 = append_features(embed(basis2, C21, false), features.target, f);
-    const Eigen::MatrixXd q2 = append_features(embed(basis2, C21, true), features.target, f);
-    const Eigen::MatrixXd d1 = append_features(embed(basis1, C12, false), features.source, f);
+    const Eigen::Index k = C12.rows();
+    // Each product once per step, the two concurrently (they dominate the cost with large bases).
+    Eigen::MatrixXd mapped1, mapped2;
+    invoke_both<ConcurrencyTag>([&] { mapped1.noalias() = basis1.leftCols(k) * C12; },
+                                [&] { mapped2.noalias() = basis2.leftCols(k) * C21; });
+    const Eigen::MatrixXd q1 = append_features(join(mapped1, basis1.leftCols(k)), features.source, f);
+    const Eigen::MatrixXd d2 = append_features(join(basis2.leftCols(k), mapped2), features.target, f);
+    const Eigen::MatrixXd q2 = append_features(join(mapped2, basis2.leftCols(k)), features.target, f);
+    const Eigen::MatrixXd d1 = append_features(join(basis1.leftCols(k), mapped1), features.source, f);
     if(last)
     {
       zoomout_nearest<ConcurrencyTag>(q1, d2, full1, landmarks, map12);
@@ -272,8 +272,8 @@ void coupled_zoomout_refine(const Eigen::MatrixXd& basis1, const Eigen::VectorXd
     }
     zoomout_nearest<ConcurrencyTag>(q1, d2, fitter1, landmarks, rows_map12);
     zoomout_nearest<ConcurrencyTag>(q2, d1, fitter2, landmarks21, rows_map21);
-    C12 = fitter1.fit(rows_map12, basis2, sizes[s + 1], sizes[s + 1]);
-    C21 = fitter2.fit(rows_map21, basis1, sizes[s + 1], sizes[s + 1]);
+    invoke_both<ConcurrencyTag>([&] { C12 = fitter1.fit(rows_map12, basis2, sizes[s + 1], sizes[s + 1]); },
+                                [&] { C21 = fitter2.fit(rows_map21, basis1, sizes[s + 1], sizes[s + 1]); });
   }
 }
 

@@ -16,6 +16,7 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #endif
 
 namespace CGAL {
@@ -63,6 +64,21 @@ void parallel_for(std::size_t n, const Body& body, std::size_t grain = 1)
         for(std::size_t i = b; i < e; ++i) body(i);
       },
       grain);
+}
+
+/// Runs a and b, concurrently with Parallel_tag.
+template <typename ConcurrencyTag, typename A, typename B>
+void invoke_both(const A& a, const B& b)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if(Is_parallel<ConcurrencyTag>::value)
+  {
+    tbb::parallel_invoke(a, b);
+    return;
+  }
+#endif
+  a();
+  b();
 }
 
 } // namespace internal
