@@ -16,6 +16,7 @@
 #include "comap_pipeline.h"
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
@@ -164,10 +165,11 @@ int match(int argc, char** argv)
 
   const bool refine = !no_refine;
   const bool initialization_data = automatic || repair;
-  std::unique_ptr<Prepared_shape> s1 =
-      prepare_shape(files[0], std::move(m1), settings, refine, initialization_data, progress);
-  std::unique_ptr<Prepared_shape> s2 =
-      prepare_shape(files[1], std::move(m2), settings, refine, initialization_data, progress);
+  // Both shapes at once (their eigensolvers are sequential).
+  std::unique_ptr<Prepared_shape> s1, s2;
+  smc::internal::invoke_both<Concurrency>(
+      [&] { s1 = prepare_shape(files[0], std::move(m1), settings, refine, initialization_data, progress); },
+      [&] { s2 = prepare_shape(files[1], std::move(m2), settings, refine, initialization_data, progress); });
 
   smc::Automatic_initialization_result initialization;
   if(automatic)

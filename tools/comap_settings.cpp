@@ -77,9 +77,13 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   p.value("--mu", "X", "weight of the descriptor (unary) term against the geodesic (pairwise) term",
           shortest(d.refinement.unary_weight), [&r](const std::string& v) { r.unary_weight = parse_double("--mu", v); });
   p.value("--consistency-weight", "X", "weight of the cycle term: a candidate k of source vertex i costs X times the "
-          "geodesic distance (relative to sqrt(area)) from i to the opposite map's match of k (0: the paper's energy)",
+          "geodesic distance (relative to sqrt(area)) from i to the opposite map's match of k (0: the paper's energy; "
+          "without --consistency-weight: " + shortest(d.automatic_consistency_weight) + " for automatic initial maps)",
           shortest(d.refinement.consistency_weight),
-          [&r](const std::string& v) { r.consistency_weight = parse_double("--consistency-weight", v); });
+          [&r, &s](const std::string& v) {
+            r.consistency_weight = parse_double("--consistency-weight", v);
+            s.consistency_weight_given = true;
+          });
   p.value("--outer-iterations", "N", "outer iterations (0: the length of the ring schedule)",
           std::to_string(d.refinement.number_of_outer_iterations),
           [&r](const std::string& v) { r.number_of_outer_iterations = parse_int("--outer-iterations", v, 0, 1000); });
@@ -101,8 +105,8 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   p.value("--keep-input", "auto|on|off",
           "on: return the input maps unchanged when no refined iterate is more consistent (the paper's rule); "
           "off: return the most consistent refined iterate; auto: on for given initial maps, off for automatic "
-          "ones (consistent by construction)",
-          "on", [&s](const std::string& v) {
+          "ones (their lighter cycle term trades a little consistency for accuracy)",
+          "auto", [&s](const std::string& v) {
             s.keep_consistent_input_maps = parse_automatic_switch("--keep-input", v, "off", "on");
           });
   p.value("--trws-iterations", "N", "TRW-S iterations per MRF solve",
@@ -179,6 +183,9 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           [&in](const std::string& v) { in.zoomout_pass_size = parse_int("--init-pass-basis", v, 2, 100000); });
   p.value("--init-step", "N", "ZoomOut basis growth per iteration", std::to_string(di.zoomout_step),
           [&in](const std::string& v) { in.zoomout_step = parse_int("--init-step", v, 1, 100000); });
+  p.value("--init-growth-step", "N", "ZoomOut basis growth per iteration from --init-pass-basis to --init-basis",
+          std::to_string(di.zoomout_growth_step),
+          [&in](const std::string& v) { in.zoomout_growth_step = parse_int("--init-growth-step", v, 1, 100000); });
   p.value("--init-eigenpairs", "K", "eigenpairs for the initialisation (0: the final basis size)",
           std::to_string(di.number_of_eigenpairs),
           [&in](const std::string& v) { in.number_of_eigenpairs = parse_int("--init-eigenpairs", v, 0, 100000); });
@@ -257,6 +264,7 @@ smc::Refinement_settings resolved_refinement(const Settings& settings, bool auto
   r.keep_consistent_input_maps = resolve_switch(settings.keep_consistent_input_maps, !automatic_input);
   r.stop_when_consistency_worsens = resolve_switch(settings.stop_rule, automatic_input);
   if(automatic_input && !settings.ring_schedule_given) r.ring_schedule = settings.automatic_ring_schedule;
+  if(automatic_input && !settings.consistency_weight_given) r.consistency_weight = settings.automatic_consistency_weight;
   return r;
 }
 
@@ -312,6 +320,7 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
         .value("zoomout_final_size", in.zoomout_final_size)
         .value("zoomout_pass_size", in.zoomout_pass_size)
         .value("zoomout_step", in.zoomout_step)
+        .value("zoomout_growth_step", in.zoomout_growth_step)
         .value("number_of_eigenpairs", smc::internal::initialization_number_of_eigenpairs(in))
         .value("wks_weight", in.wks_weight)
         .value("hks_weight", in.hks_weight)
