@@ -17,6 +17,7 @@
 //     --nn             nearest-neighbour search: blocked GEMM vs CGAL Kd_tree
 //     settings of the method: --cands k0:wo:wc,... --sel --kf --step --eig --wl --hks --wks --nwks
 //       --sw --ssmooth --nops --normgrad --procrustes --coupled --zbij --samples --zdw --zdr
+//       --gstep --pass --repairs --drepair --maxpasses
 //
 // Error of a map T from A to B, per ground-truth sample k (5000 per shape):
 //   err_k = d_B(T(A.vts[k]), B.vts[k]) / sqrt(area(B)),
@@ -407,6 +408,8 @@ bool parse(int argc, char** argv, Options& o)
     else if(a == "--pass") s.zoomout_pass_size = std::stoi(next());
     else if(a == "--repairs") s.tear_repair_passes = std::stoi(next());
     else if(a == "--drepair") s.distortion_repair_passes = std::stoi(next());
+    else if(a == "--maxpasses") s.maximum_passes = std::stoi(next());
+    else if(a == "--tdtol") s.tear_repair_distortion_tolerance = std::stod(next());
     else if(a == "--eig") s.number_of_eigenpairs = std::stoi(next());
     else if(a == "--wl") s.weights.laplacian = std::stod(next());
     else if(a == "--hks") s.hks_weight = std::stod(next());

@@ -237,6 +237,12 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   p.value("--init-tear-fraction", "X", "repair when the tears cut off more than this area fraction of a mesh",
           shortest(di.tear_min_fraction),
           [&in](const std::string& v) { in.tear_min_fraction = parse_double("--init-tear-fraction", v); });
+  p.value("--init-repair-distortion", "X", "a tear repair pass is kept only when its maps distort the geodesic "
+          "distances of the distortion samples at most this fraction more than the maps they replace (negative: no "
+          "check)",
+          shortest(di.tear_repair_distortion_tolerance), [&in](const std::string& v) {
+            in.tear_repair_distortion_tolerance = parse_double("--init-repair-distortion", v);
+          });
   p.value("--init-repair-landmarks", "N", "landmarks sampled in the core of each map by a repair pass",
           std::to_string(di.tear_repair_landmarks),
           [&in](const std::string& v) { in.tear_repair_landmarks = parse_int("--init-repair-landmarks", v, 1, 100000); });
@@ -334,6 +340,8 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
         .value("coupled_zoomout", in.coupled_zoomout)
         .value("zoomout_bijectivity_weight", in.zoomout_bijectivity_weight)
         .value("zoomout_number_of_samples", in.zoomout_number_of_samples)
+        .value("tear_repair_passes", in.tear_repair_passes)
+        .value("tear_repair_distortion_tolerance", in.tear_repair_distortion_tolerance)
         .end_object();
   }
   json.end_object();

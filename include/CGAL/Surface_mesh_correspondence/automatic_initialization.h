@@ -176,6 +176,12 @@ struct Initialization_settings
   /// root of the target's area; at least four mean edge lengths).
   double tear_threshold = 0.06;
   double tear_min_fraction = 0.01;
+  /// A tear repair pass is kept only when its maps also distort the geodesic distances of the
+  /// distortion samples (pair_distortion()) at most this fraction more than the maps they replace
+  /// (negative: no check). Landmarks from the core of a map torn over half a mesh can pull the
+  /// repair into an untorn but mirrored map (TOSCA_r michael19 - michael8: 0.067 -> 0.30, its
+  /// distortion +7%).
+  double tear_repair_distortion_tolerance = 0.05;
   /// Landmarks sampled in the core of each map by a repair pass.
   int tear_repair_landmarks = 30;
   // Distortion repair.
@@ -318,6 +324,7 @@ inline void check_initialization_settings(const Initialization_settings& s)
     fail("distortion_repair_gain must be in [0, 1)");
   if(!(s.tear_threshold > 0) || !std::isfinite(s.tear_threshold)) fail("tear_threshold must be positive");
   if(!(s.tear_min_fraction >= 0) || !(s.tear_min_fraction < 1)) fail("tear_min_fraction must be in [0, 1)");
+  if(!std::isfinite(s.tear_repair_distortion_tolerance)) fail("tear_repair_distortion_tolerance must be finite");
   if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
 }
 
@@ -1211,6 +1218,32 @@ void grow_initial_maps(const Initialization_shape& shape1, const Initialization_
               << " s, cycle error " << result.cycle_error << ", fixed " << result.cycle_fixed_fraction << "\n";
 }
 
+/// The geodesic distortion of a pair of maps on the distortion samples of both meshes (the mean of
+/// both directions, see map_distortion()); with `core_12` and `core_21` not null, also the
+/// isometric cores of both maps (distortion_core()).
+template <typename ConcurrencyTag>
+double pair_distortion(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                       const Initialization_settings& s, const Initialization_pass_cache& cache,
+                       const std::vector<std::size_t>& map_12, const std::vector<std::size_t>& map_21,
+                       std::vector<int>* core_12 = nullptr, std::vector<int>* core_21 = nullptr)
+{
+  std::vector<int> images12, images21;
+  for(int v : cache.first.samples.distortion_vertices) images12.push_back(int(map_12[std::size_t(v)]));
+  for(int v : cache.second.samples.distortion_vertices) images21.push_back(int(map_21[std::size_t(v)]));
+  Vertex_set_distances d2, d1;
+  invoke_both<ConcurrencyTag>(
+      [&] { d2.compute<ConcurrencyTag>(cache.second.geodesics, images12, std::sqrt(shape2.spectrum->total_area())); },
+      [&] { d1.compute<ConcurrencyTag>(cache.first.geodesics, images21, std::sqrt(shape1.spectrum->total_area())); });
+  if(core_12)
+    *core_12 = distortion_core(cache.first.sample_distances, d2, images12, s.distortion_core_tolerance,
+                               s.distortion_core_agreement);
+  if(core_21)
+    *core_21 = distortion_core(cache.second.sample_distances, d1, images21, s.distortion_core_tolerance,
+                               s.distortion_core_agreement);
+  return 0.5 * (map_distortion(cache.first.sample_distances, d2, images12) +
+                map_distortion(cache.second.sample_distances, d1, images21));
+}
+
 /// The tears of both maps of a pair (1 -> 2 on mesh 1, 2 -> 1 on mesh 2).
 struct Pair_tears
 {
@@ -1250,6 +1283,15 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
   const Indexed_mesh& m2 = *shape2.mesh;
   Pair_tears tears = pair_tears(m1, m2, map_12, map_21, s.tear_threshold);
   result.torn_fraction_before = result.torn_fraction = tears.torn_fraction();
+  // The distortion check needs the distortion samples of both meshes.
+  const bool check_distortion = s.tear_repair_distortion_tolerance >= 0;
+  double distortion = 0;
+  auto distortion_of = [&](const std::vector<std::size_t>& a, const std::vector<std::size_t>& b) {
+    Initialization_settings sampling = s;
+    sampling.distortion_repair_passes = std::max(1, s.distortion_repair_passes);
+    prepare_pass_cache<ConcurrencyTag>(shape1, shape2, sampling, *pass_cache);
+    return pair_distortion<ConcurrencyTag>(shape1, shape2, s, *pass_cache, a, b);
+  };
   // The orientation hypothesis of the maps, relative to the meshes' own orientations.
   const int mesh_sign = (signed_volume(m1) * signed_volume(m2) < 0) ? -1 : 1;
   double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
@@ -1270,10 +1312,18 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
     const Pair_tears repaired = pair_tears(m1, m2, r12, r21, s.tear_threshold);
     functional_map_seconds += r.functional_map_seconds;
     zoomout_seconds += r.zoomout_seconds;
-    const bool keep = repaired.torn_fraction() < tears.torn_fraction();
+    bool keep = repaired.torn_fraction() < tears.torn_fraction();
+    double repaired_distortion = 0;
+    if(keep && check_distortion)
+    {
+      if(pass == 1 || distortion == 0) distortion = distortion_of(map_12, map_21);
+      repaired_distortion = distortion_of(r12, r21);
+      keep = repaired_distortion <= (1 + s.tear_repair_distortion_tolerance) * distortion;
+    }
     if(s.verbose)
       std::cerr << "automatic_initial_maps: repair pass " << pass << " with " << repair.landmarks.size()
                 << " landmarks: torn fraction " << tears.torn_fraction() << " -> " << repaired.torn_fraction()
+                << ", distortion " << distortion << " -> " << repaired_distortion
                 << (keep ? " (kept)" : " (discarded)") << "\n";
     if(!keep) break;
     r.spectra_seconds = result.spectra_seconds;
@@ -1284,37 +1334,12 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
     map_12.swap(r12);
     map_21.swap(r21);
     tears = repaired;
+    distortion = repaired_distortion;
   }
   result.functional_map_seconds = functional_map_seconds;
   result.zoomout_seconds = zoomout_seconds;
   result.passes = passes;
   return result;
-}
-
-/// The geodesic distortion of a pair of maps on the distortion samples of both meshes (the mean of
-/// both directions, see map_distortion()); with `core_12` and `core_21` not null, also the
-/// isometric cores of both maps (distortion_core()).
-template <typename ConcurrencyTag>
-double pair_distortion(const Initialization_shape& shape1, const Initialization_shape& shape2,
-                       const Initialization_settings& s, const Initialization_pass_cache& cache,
-                       const std::vector<std::size_t>& map_12, const std::vector<std::size_t>& map_21,
-                       std::vector<int>* core_12 = nullptr, std::vector<int>* core_21 = nullptr)
-{
-  std::vector<int> images12, images21;
-  for(int v : cache.first.samples.distortion_vertices) images12.push_back(int(map_12[std::size_t(v)]));
-  for(int v : cache.second.samples.distortion_vertices) images21.push_back(int(map_21[std::size_t(v)]));
-  Vertex_set_distances d2, d1;
-  invoke_both<ConcurrencyTag>(
-      [&] { d2.compute<ConcurrencyTag>(cache.second.geodesics, images12, std::sqrt(shape2.spectrum->total_area())); },
-      [&] { d1.compute<ConcurrencyTag>(cache.first.geodesics, images21, std::sqrt(shape1.spectrum->total_area())); });
-  if(core_12)
-    *core_12 = distortion_core(cache.first.sample_distances, d2, images12, s.distortion_core_tolerance,
-                               s.distortion_core_agreement);
-  if(core_21)
-    *core_21 = distortion_core(cache.second.sample_distances, d1, images21, s.distortion_core_tolerance,
-                               s.distortion_core_agreement);
-  return 0.5 * (map_distortion(cache.first.sample_distances, d2, images12) +
-                map_distortion(cache.second.sample_distances, d1, images21));
 }
 
 /// The distortion repair of a pair of maps (see automatic_initial_maps()). A map can be continuous,
