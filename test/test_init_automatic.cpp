@@ -588,23 +588,29 @@ BOOST_AUTO_TEST_CASE(kept_maps_grow_from_the_pass_size_to_the_final_size)
   std::vector<std::size_t> a12, a21, b12, b21, c12, c21;
   const smc::Automatic_initialization_result a = smc::automatic_initial_maps(
       f.pair.m1, f.pair.m2, a12, a21, params::zoomout_final_size(80, params::zoomout_pass_size(80)));
+  // b grows in steps of 5, c in the default steps of 10.
   const smc::Automatic_initialization_result b = smc::automatic_initial_maps(
-      f.pair.m1, f.pair.m2, b12, b21, params::zoomout_final_size(160, params::zoomout_pass_size(80)));
+      f.pair.m1, f.pair.m2, b12, b21,
+      params::zoomout_final_size(160, params::zoomout_pass_size(80, params::zoomout_growth_step(5))));
   const smc::Automatic_initialization_result c = smc::automatic_initial_maps(
-      f.pair.m1, f.pair.m2, c12, c21, params::zoomout_final_size(120, params::zoomout_pass_size(80)));
+      f.pair.m1, f.pair.m2, c12, c21, params::zoomout_final_size(160, params::zoomout_pass_size(80)));
   BOOST_TEST(a.final_basis_size == 80);
   BOOST_TEST(b.final_basis_size == 160);
   BOOST_TEST(b.functional_map_12.rows() == 160);
   BOOST_TEST(b.functional_map_21.cols() == 160);
+  BOOST_TEST(c.final_basis_size == 160);
   // The passes do not depend on the final size: their descriptors use the pass's 80 eigenpairs
-  // (spectra of 80, 160 and 120 eigenpairs agree on those to the solver's precision).
+  // (spectra of 80 and 160 eigenpairs agree on those to the solver's precision).
   BOOST_TEST(std::abs(a.selection_score - b.selection_score) < 1e-6 * a.selection_score);
   BOOST_TEST(std::abs(a.selection_score - c.selection_score) < 1e-6 * a.selection_score);
   const double ea = f.error_12(a12, f.pair.gt_12) + f.error_21(a21, f.pair.gt_21);
   const double eb = f.error_12(b12, f.pair.gt_12) + f.error_21(b21, f.pair.gt_21);
-  BOOST_TEST_MESSAGE("errors (both directions): pass 80 only " << ea << ", grown to 160 " << eb);
+  const double ec = f.error_12(c12, f.pair.gt_12) + f.error_21(c21, f.pair.gt_21);
+  BOOST_TEST_MESSAGE("errors (both directions): pass 80 only " << ea << ", grown to 160 in steps of 5 " << eb
+                                                               << ", in steps of 10 " << ec);
   BOOST_TEST(a12 != b12);  // the growth changed the maps,
-  BOOST_TEST(eb < ea);     // and made them more accurate
+  BOOST_TEST(eb < ea);     // and, in steps of 5, made them more accurate
+  BOOST_TEST(c12 != b12);  // the growth step is used (steps of 10 do not gain on this small pair)
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, c12, c21, params::zoomout_pass_size(1)),
                     smc::Invalid_parameter_error);
 }
