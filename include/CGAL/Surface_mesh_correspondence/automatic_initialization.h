@@ -1218,6 +1218,17 @@ void grow_initial_maps(const Initialization_shape& shape1, const Initialization_
               << " s, cycle error " << result.cycle_error << ", fixed " << result.cycle_fixed_fraction << "\n";
 }
 
+/// Fills `cache` as prepare_pass_cache() does, with the distortion samples even when the settings
+/// would not need them (select_by_distortion off and no distortion repair).
+template <typename ConcurrencyTag>
+void prepare_distortion_samples(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                                const Initialization_settings& s, Initialization_pass_cache& cache)
+{
+  Initialization_settings sampling = s;
+  sampling.distortion_repair_passes = std::max(1, s.distortion_repair_passes);
+  prepare_pass_cache<ConcurrencyTag>(shape1, shape2, sampling, cache);
+}
+
 /// The geodesic distortion of a pair of maps on the distortion samples of both meshes (the mean of
 /// both directions, see map_distortion()); with `core_12` and `core_21` not null, also the
 /// isometric cores of both maps (distortion_core()).
@@ -1283,15 +1294,8 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
   const Indexed_mesh& m2 = *shape2.mesh;
   Pair_tears tears = pair_tears(m1, m2, map_12, map_21, s.tear_threshold);
   result.torn_fraction_before = result.torn_fraction = tears.torn_fraction();
-  // The distortion check needs the distortion samples of both meshes.
   const bool check_distortion = s.tear_repair_distortion_tolerance >= 0;
-  double distortion = 0;
-  auto distortion_of = [&](const std::vector<std::size_t>& a, const std::vector<std::size_t>& b) {
-    Initialization_settings sampling = s;
-    sampling.distortion_repair_passes = std::max(1, s.distortion_repair_passes);
-    prepare_pass_cache<ConcurrencyTag>(shape1, shape2, sampling, *pass_cache);
-    return pair_distortion<ConcurrencyTag>(shape1, shape2, s, *pass_cache, a, b);
-  };
+  double distortion = -1;  // of the current maps, computed when first needed
   // The orientation hypothesis of the maps, relative to the meshes' own orientations.
   const int mesh_sign = (signed_volume(m1) * signed_volume(m2) < 0) ? -1 : 1;
   double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
@@ -1316,8 +1320,9 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
     double repaired_distortion = 0;
     if(keep && check_distortion)
     {
-      if(pass == 1 || distortion == 0) distortion = distortion_of(map_12, map_21);
-      repaired_distortion = distortion_of(r12, r21);
+      prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, *pass_cache);
+      if(distortion < 0) distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, *pass_cache, map_12, map_21);
+      repaired_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, *pass_cache, r12, r21);
       keep = repaired_distortion <= (1 + s.tear_repair_distortion_tolerance) * distortion;
     }
     if(s.verbose)
@@ -1363,9 +1368,7 @@ Automatic_initialization_result repair_distorted_maps(const Initialization_shape
 {
   Initialization_pass_cache own_cache;
   if(!pass_cache) pass_cache = &own_cache;
-  Initialization_settings sampling = s;
-  sampling.distortion_repair_passes = std::max(1, s.distortion_repair_passes);
-  prepare_pass_cache<ConcurrencyTag>(shape1, shape2, sampling, *pass_cache);
+  prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, *pass_cache);
   const Indexed_mesh& m1 = *shape1.mesh;
   const Indexed_mesh& m2 = *shape2.mesh;
   std::vector<int> core12, core21;
