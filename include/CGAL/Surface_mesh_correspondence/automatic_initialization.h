@@ -249,6 +249,8 @@ Initialization_settings initialization_settings(const NamedParameters& np)
   s.tear_repair_passes = choose_parameter(get_parameter(np, internal_np::number_of_repair_passes),
                                           s.tear_repair_passes);
   s.tear_threshold = choose_parameter(get_parameter(np, internal_np::tear_threshold), s.tear_threshold);
+  s.tear_repair_distortion_tolerance = choose_parameter(
+      get_parameter(np, internal_np::tear_repair_distortion_tolerance), s.tear_repair_distortion_tolerance);
   s.distortion_repair_passes = choose_parameter(
       get_parameter(np, internal_np::number_of_distortion_repair_passes), s.distortion_repair_passes);
   s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
@@ -1574,7 +1576,8 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// pairs of maps) and refitting. Then the tear repair: maps that swap two parts of a
 /// symmetric body (limbs, feet) tear where a swapped part meets the rest; when the regions cut off
 /// by the tears exceed 1% of a mesh, the maps are computed again with landmarks sampled in the
-/// largest region of each map (see repair_torn_maps()), and kept when they are less torn. Optionally
+/// largest region of each map (see repair_torn_maps()), and kept when they are less torn
+/// and at most 5% more distorted (`tear_repair_distortion_tolerance`). Optionally
 /// (`number_of_distortion_repair_passes`) the distortion repair: maps that distort the geodesic
 /// distances of farthest-point samples by more than 0.035 on average are computed again with
 /// landmarks in their isometric core, and kept when they distort at least 20% less. Finally the
@@ -1626,6 +1629,10 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///   - `tear_threshold`: a source edge is torn when its images are at least this far apart,
 ///     relative to the square root of the target's area (and at least four mean edge lengths);
 ///     type `double`; default 0.06.
+///   - `tear_repair_distortion_tolerance`: a tear repair pass is kept only when it is less torn
+///     and its maps distort the geodesic distances of farthest-point samples at most this much
+///     more (relatively) than the maps it replaces; type `double`; default 0.05 (negative: no
+///     distortion check, the less torn pass is kept).
 ///   - `number_of_distortion_repair_passes`: distortion repair passes at most (maps continuous but
 ///     wrong on a large part, e.g. half-body flips; see repair_distorted_maps()); type `int`;
 ///     default 0 (each pass costs about as much as the first one).
@@ -1684,7 +1691,7 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 /// cut off from the largest one (the core) exceed `tear_min_fraction` of a mesh, both maps are
 /// recomputed by the automatic initialisation with farthest-point samples of the cores (and
 /// their images) as landmarks, in the orientation of the given maps, and kept when they are less
-/// torn. Maps without tears are returned unchanged. With `number_of_distortion_repair_passes`,
+/// torn and at most `tear_repair_distortion_tolerance` (5%) more distorted. Maps without tears are returned unchanged. With `number_of_distortion_repair_passes`,
 /// the distortion repair follows (see repair_distorted_maps(): maps whose sample distortion is above
 /// 0.035 are recomputed from landmarks in their isometric core, and kept when at least 20% less
 /// distorted).

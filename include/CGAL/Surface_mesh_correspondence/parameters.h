@@ -83,6 +83,8 @@ namespace Surface_mesh_correspondence {
   X(landmarks_t, landmarks, landmarks)                                                   \
   X(number_of_repair_passes_t, number_of_repair_passes, number_of_repair_passes)         \
   X(tear_threshold_t, tear_threshold, tear_threshold)                                    \
+  X(tear_repair_distortion_tolerance_t, tear_repair_distortion_tolerance,                \
+    tear_repair_distortion_tolerance)                                                    \
   X(number_of_distortion_repair_passes_t, number_of_distortion_repair_passes,            \
     number_of_distortion_repair_passes)
 
