@@ -1691,8 +1691,8 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 /// cut off from the largest one (the core) exceed `tear_min_fraction` of a mesh, both maps are
 /// recomputed by the automatic initialisation with farthest-point samples of the cores (and
 /// their images) as landmarks, in the orientation of the given maps, and kept when they are less
-/// torn and at most `tear_repair_distortion_tolerance` (5%) more distorted. Maps without tears are returned unchanged. With `number_of_distortion_repair_passes`,
-/// the distortion repair follows (see repair_distorted_maps(): maps whose sample distortion is above
+/// torn and at most `tear_repair_distortion_tolerance` (5%) more distorted. Maps without tears
+/// are returned unchanged. With `number_of_distortion_repair_passes`, the distortion repair follows (see repair_distorted_maps(): maps whose sample distortion is above
 /// 0.035 are recomputed from landmarks in their isometric core, and kept when at least 20% less
 /// distorted).
 ///
