@@ -1576,8 +1576,8 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// pairs of maps) and refitting. Then the tear repair: maps that swap two parts of a
 /// symmetric body (limbs, feet) tear where a swapped part meets the rest; when the regions cut off
 /// by the tears exceed 1% of a mesh, the maps are computed again with landmarks sampled in the
-/// largest region of each map (see repair_torn_maps()), and kept when they are less torn
-/// and at most 5% more distorted (`tear_repair_distortion_tolerance`). Optionally
+/// largest region of each map (see repair_torn_maps()), and kept when they are less torn and at
+/// most 5% more distorted (`tear_repair_distortion_tolerance`). Optionally
 /// (`number_of_distortion_repair_passes`) the distortion repair: maps that distort the geodesic
 /// distances of farthest-point samples by more than 0.035 on average are computed again with
 /// landmarks in their isometric core, and kept when they distort at least 20% less. Finally the
@@ -1692,9 +1692,9 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 /// recomputed by the automatic initialisation with farthest-point samples of the cores (and
 /// their images) as landmarks, in the orientation of the given maps, and kept when they are less
 /// torn and at most `tear_repair_distortion_tolerance` (5%) more distorted. Maps without tears
-/// are returned unchanged. With `number_of_distortion_repair_passes`, the distortion repair follows (see repair_distorted_maps(): maps whose sample distortion is above
-/// 0.035 are recomputed from landmarks in their isometric core, and kept when at least 20% less
-/// distorted).
+/// are returned unchanged. With `number_of_distortion_repair_passes`, the distortion repair
+/// follows (see repair_distorted_maps(): maps whose sample distortion is above 0.035 are
+/// recomputed from landmarks in their isometric core, and kept when at least 20% less distorted).
 ///
 /// \param map_12, map_21 input and output: `map_12[i]` is the vertex of `tm2` matched to vertex i of
 ///   `tm1` (indices of the vertex index maps), `map_21` the other way round
