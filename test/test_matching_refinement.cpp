@@ -321,6 +321,49 @@ BOOST_AUTO_TEST_CASE(generic_entry_point_with_property_maps)
   BOOST_TEST((stopped.termination == smc::Refinement_termination::visitor_stop));
 }
 
+BOOST_AUTO_TEST_CASE(shape_takes_the_leading_eigenpairs_of_a_precomputed_spectrum)
+{
+  // A shape given a spectrum of more eigenpairs (as the automatic initialisation computes) uses
+  // its leading ones: the same spectrum and, up to the eigensolver's tolerance, the same
+  // descriptor stack as a shape that solves for its own.
+  const Mesh& m = fixture().pair.m1;
+  const Shape& own = fixture().s1;
+  const smc::Laplace_beltrami_spectrum large(m, params::number_of_eigenpairs(80));
+  const Shape shared(m, params::precomputed_spectrum(std::cref(large), shape_parameters()));
+  BOOST_TEST(shared.spectrum().number_of_eigenpairs() == 40);
+  BOOST_TEST((shared.spectrum().eigenvalues() - large.eigenvalues().head(40)).norm() == 0);
+  BOOST_TEST((shared.spectrum().eigenvalues() - own.spectrum().eigenvalues()).cwiseAbs().maxCoeff() <
+             1e-9 * own.spectrum().eigenvalues()[39]);
+  const double stack_difference = (shared.descriptors() - own.descriptors()).cwiseAbs().maxCoeff();
+  BOOST_TEST_MESSAGE("largest descriptor difference " << stack_difference);
+  BOOST_TEST(stack_difference < 1e-4);
+  BOOST_TEST(shared.preprocessing_times().spectrum < own.preprocessing_times().spectrum);
+
+  // A spectrum that does not fit is refused with the reason.
+  const smc::Laplace_beltrami_spectrum few(m, params::number_of_eigenpairs(30));
+  BOOST_TEST(contains(error_of<smc::Invalid_parameter_error>([&] {
+                        Shape s(m, params::precomputed_spectrum(std::cref(few), shape_parameters()));
+                      }),
+                      "30 eigenpairs, fewer than the 40 needed"));
+  const smc::Laplace_beltrami_spectrum of_other(fixture().pair.m2, params::number_of_eigenpairs(40));
+  BOOST_TEST(contains(error_of<smc::Invalid_parameter_error>([&] {
+                        Shape s(m, params::precomputed_spectrum(std::cref(of_other), shape_parameters()));
+                      }),
+                      "precomputed_spectrum"));
+  // Same connectivity, other geometry: the vertex areas tell.
+  const Mesh bigger = transformed(m, [](const Point& p) { return Point(1.5 * p.x(), p.y(), p.z()); });
+  const smc::Laplace_beltrami_spectrum of_bigger(bigger, params::number_of_eigenpairs(40));
+  BOOST_TEST(contains(error_of<smc::Invalid_parameter_error>([&] {
+                        Shape s(m, params::precomputed_spectrum(std::cref(of_bigger), shape_parameters()));
+                      }),
+                      "not a spectrum of this mesh"));
+  const smc::Laplace_beltrami_spectrum plain(m, params::number_of_eigenpairs(40, params::use_intrinsic_delaunay(false)));
+  BOOST_TEST(contains(error_of<smc::Invalid_parameter_error>([&] {
+                        Shape s(m, params::precomputed_spectrum(std::cref(plain), shape_parameters()));
+                      }),
+                      "intrinsic Delaunay"));
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_is_named)
 {
   const Fixture& f = fixture();

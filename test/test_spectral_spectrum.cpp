@@ -360,6 +360,29 @@ BOOST_AUTO_TEST_CASE(indexed_mesh_constructor)
                       "isolated"));
 }
 
+BOOST_AUTO_TEST_CASE(leading_eigenpairs_of_a_larger_spectrum)
+{
+  // Taking the first k eigenpairs of a spectrum of 2k gives the spectrum computed with k, up to
+  // the solver's tolerance (signs included: the convention does not depend on k).
+  const Mesh m = lumpy_ellipsoid(3);
+  const smc::Laplace_beltrami_spectrum large(m, params::number_of_eigenpairs(60));
+  const smc::Laplace_beltrami_spectrum direct(m, params::number_of_eigenpairs(30));
+  const smc::Laplace_beltrami_spectrum taken(large, 30);
+  BOOST_TEST(taken.number_of_eigenpairs() == 30);
+  BOOST_TEST((taken.eigenvalues() - large.eigenvalues().head(30)).norm() == 0);
+  BOOST_TEST((taken.eigenvalues() - direct.eigenvalues()).cwiseAbs().maxCoeff() < 1e-9 * direct.eigenvalues()[29]);
+  BOOST_TEST((taken.eigenvectors() - direct.eigenvectors()).cwiseAbs().maxCoeff() < 1e-6);
+  BOOST_TEST((taken.mass() - direct.mass()).norm() == 0);
+  BOOST_TEST((taken.stiffness_matrix() - direct.stiffness_matrix()).norm() == 0);
+  BOOST_TEST(taken.total_area() == direct.total_area());
+  BOOST_TEST(taken.uses_intrinsic_delaunay() == direct.uses_intrinsic_delaunay());
+  BOOST_TEST(taken.number_of_flips() == direct.number_of_flips());
+  BOOST_TEST(orthonormality_error(taken) < 1e-8);
+  BOOST_TEST(contains(error_of<smc::Invalid_parameter_error>([&] { smc::Laplace_beltrami_spectrum s(large, 61); }),
+                      "cannot take 61 eigenpairs from a spectrum of 60"));
+  BOOST_CHECK_THROW(smc::Laplace_beltrami_spectrum(large, 0), smc::Invalid_parameter_error);
+}
+
 BOOST_AUTO_TEST_CASE(non_convergence_is_a_numerical_error)
 {
   // Two restarts with a Krylov space barely larger than k cannot converge to 1e-14.

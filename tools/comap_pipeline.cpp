@@ -19,12 +19,16 @@ std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh
   std::unique_ptr<Prepared_shape> p(new Prepared_shape);
   p->name = name;
   p->mesh = std::move(mesh);
-  if(for_refinement)
-  {
-    p->shape.reset(new Shape(p->mesh, shape_parameters(settings.shape, settings.shape.number_of_eigenpairs), name));
-    p->times = p->shape->preprocessing_times();
-  }
-  else
+  const int needed =
+      for_initialization ? smc::internal::initialization_number_of_eigenpairs(settings.initialization) : 0;
+  // The initialisation needs `needed` eigenpairs on the intrinsic Delaunay triangulation (as in
+  // automatic_initial_maps()). When the refinement needs no more on the same operator, one
+  // eigensolve serves both: the initialisation's spectrum first, then the refinement's shape
+  // takes its leading eigenpairs (precomputed_spectrum).
+  const bool shared = for_refinement && for_initialization && settings.shape.use_intrinsic_delaunay &&
+                      settings.shape.number_of_eigenpairs <= needed;
+  double initialization_spectrum_seconds = 0;
+  if(!for_refinement || shared)
   {
     const Stopwatch t;
     smc::internal::Mesh_requirements requirements;
@@ -33,22 +37,40 @@ std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh
         smc::internal::make_indexed_mesh(p->mesh, smc::parameters::default_values(), requirements, name)));
     p->times.mesh = t.seconds();
   }
+  if(for_initialization && static_cast<int>(p->number_of_vertices()) <= needed)
+    throw smc::Invalid_mesh_error(name + " has " + std::to_string(p->number_of_vertices()) +
+                                  " vertices, too few for the automatic initialisation's basis of " +
+                                  std::to_string(needed) + " eigenfunctions (lower --init-basis)");
+  if(shared)
+  {
+    const Stopwatch t;
+    p->own_spectrum_.reset(
+        new smc::Laplace_beltrami_spectrum(*p->own_mesh_, smc::parameters::number_of_eigenpairs(needed)));
+    initialization_spectrum_seconds = t.seconds();
+    p->shape.reset(new Shape(p->mesh,
+                             smc::parameters::precomputed_spectrum(
+                                 std::cref(*p->own_spectrum_),
+                                 shape_parameters(settings.shape, settings.shape.number_of_eigenpairs)),
+                             name));
+    p->times = p->shape->preprocessing_times();
+    p->spectrum_from_initialization = true;
+    p->own_mesh_.reset();  // the shape's flat copy is the same
+  }
+  else if(for_refinement)
+  {
+    p->shape.reset(new Shape(p->mesh, shape_parameters(settings.shape, settings.shape.number_of_eigenpairs), name));
+    p->times = p->shape->preprocessing_times();
+  }
   if(for_initialization)
   {
     const Stopwatch t;
-    const int needed = smc::internal::initialization_number_of_eigenpairs(settings.initialization);
-    if(static_cast<int>(p->number_of_vertices()) <= needed)
-      throw smc::Invalid_mesh_error(name + " has " + std::to_string(p->number_of_vertices()) +
-                                    " vertices, too few for the automatic initialisation's basis of " +
-                                    std::to_string(needed) + " eigenfunctions (lower --init-basis)");
-    // As automatic_initial_maps(): `needed` eigenpairs on the intrinsic Delaunay triangulation.
-    if(!p->shape || p->shape->spectrum().number_of_eigenpairs() != needed ||
-       !p->shape->spectrum().uses_intrinsic_delaunay())
+    if(!p->own_spectrum_ && (!p->shape || p->shape->spectrum().number_of_eigenpairs() != needed ||
+                             !p->shape->spectrum().uses_intrinsic_delaunay()))
       p->own_spectrum_.reset(
           new smc::Laplace_beltrami_spectrum(p->indexed_mesh(), smc::parameters::number_of_eigenpairs(needed)));
     p->initialization_descriptors = smc::internal::initialization_descriptors<Concurrency>(
         p->indexed_mesh(), p->initialization_spectrum(), settings.initialization);
-    p->initialization_seconds = t.seconds();
+    p->initialization_seconds = initialization_spectrum_seconds + t.seconds();
   }
   p->total_seconds = watch.seconds();
   progress.line("prepared " + name + " (" + std::to_string(p->number_of_vertices()) + " vertices) in " +
@@ -60,7 +82,8 @@ std::string preparation_summary(const Prepared_shape& s)
 {
   std::string out;
   if(s.shape)
-    out = "spectrum (" + std::to_string(s.shape->spectrum().number_of_eigenpairs()) + " eigenpairs) " +
+    out = "spectrum (" + std::to_string(s.shape->spectrum().number_of_eigenpairs()) +
+          (s.spectrum_from_initialization ? " eigenpairs, the initialisation's first) " : " eigenpairs) ") +
           duration(s.times.spectrum) + ", descriptor stack " + duration(s.times.descriptors) +
           ", geodesic distances " + duration(s.times.distances);
   if(s.initialization_descriptors.size() > 0)

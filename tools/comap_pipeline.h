@@ -26,10 +26,11 @@ typedef smc::Correspondence_shape<Mesh, Concurrency> Shape;
 typedef smc::Map_evaluator<Concurrency> Evaluator;
 
 /// A mesh prepared once for everything a run needs: the refinement's Correspondence_shape
-/// and/or the automatic initialisation's spectrum and descriptors, on one flat copy. The
-/// initialisation shares the refinement's spectrum when both use the same number of eigenpairs,
-/// and otherwise gets its own (so that its maps are exactly those of
-/// automatic_initial_maps(), and the refinement's descriptors do not depend on it).
+/// and/or the automatic initialisation's spectrum and descriptors, on one flat copy. One
+/// eigensolve serves both when the refinement needs at most the initialisation's eigenpairs on
+/// the same operator (the defaults: 100 of 200): the refinement takes the leading eigenpairs.
+/// Otherwise each computes its own, so that the initialisation's maps are exactly those of
+/// automatic_initial_maps().
 class Prepared_shape
 {
 public:
@@ -42,6 +43,9 @@ public:
   smc::Shape_preprocessing_times times;      ///< flat copy, spectrum, descriptor stack, distances
   double initialization_seconds = 0;         ///< the initialisation's own spectrum (if any) and descriptors
   double total_seconds = 0;                  ///< all of the preparation
+  /// True when the refinement's spectrum is the leading part of the initialisation's (one
+  /// eigensolve; its time is in `initialization_seconds`).
+  bool spectrum_from_initialization = false;
 
   const smc::internal::Indexed_mesh& indexed_mesh() const { return shape ? shape->data().mesh : *own_mesh_; }
   /// The spectrum of the initialisation.

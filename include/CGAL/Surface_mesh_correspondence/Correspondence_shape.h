@@ -144,9 +144,38 @@ inline double seconds_since(std::chrono::steady_clock::time_point t)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-/// Computes everything but the flat mesh, which `d.mesh` already holds.
+/// Checks that `given` is a spectrum of `mesh` from which the first `k` eigenpairs can be taken
+/// for settings `s`: same vertices, same vertex areas (the lumped mass, which intrinsic flips do
+/// not change), at least `k` eigenpairs, same operator.
+inline void check_precomputed_spectrum(const Laplace_beltrami_spectrum& given, const Indexed_mesh& mesh, int k,
+                                       const Shape_settings& s)
+{
+  const int n = mesh.number_of_vertices();
+  const std::string what = "precomputed_spectrum: ";
+  if(given.number_of_vertices() != n)
+    throw Invalid_parameter_error(what + "a spectrum of " + std::to_string(given.number_of_vertices()) +
+                                  " vertices for a mesh of " + std::to_string(n));
+  if(given.number_of_eigenpairs() < k)
+    throw Invalid_parameter_error(what + std::to_string(given.number_of_eigenpairs()) +
+                                  " eigenpairs, fewer than the " + std::to_string(k) + " needed");
+  if(given.uses_intrinsic_delaunay() != s.use_intrinsic_delaunay)
+    throw Invalid_parameter_error(what + (given.uses_intrinsic_delaunay() ? "computed" : "not computed") +
+                                  " on the intrinsic Delaunay triangulation, unlike use_intrinsic_delaunay");
+  std::vector<double> area(static_cast<std::size_t>(n), 0.0);
+  for(int f = 0; f < mesh.number_of_triangles(); ++f)
+    for(int c = 0; c < 3; ++c) area[std::size_t(mesh.triangles(f, c))] += mesh.triangle_areas[std::size_t(f)] / 3;
+  for(int v = 0; v < n; ++v)
+    if(!(std::abs(given.mass()[v] - area[std::size_t(v)]) <= 1e-9 * area[std::size_t(v)] + 1e-12 * mesh.total_area))
+      throw Invalid_parameter_error(what + "not a spectrum of this mesh (vertex " + std::to_string(v) +
+                                    " has area " + std::to_string(area[std::size_t(v)]) + ", mass " +
+                                    std::to_string(given.mass()[v]) + " in the spectrum)");
+}
+
+/// Computes everything but the flat mesh, which `d.mesh` already holds. With `given`, the spectrum
+/// is its first eigenpairs (check_precomputed_spectrum()) instead of a new eigensolve.
 template <typename ConcurrencyTag>
-void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::MatrixXd& user_descriptors)
+void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::MatrixXd& user_descriptors,
+                        const Laplace_beltrami_spectrum* given = nullptr)
 {
   auto t = std::chrono::steady_clock::now();
   const int n = d.mesh.number_of_vertices();
@@ -156,9 +185,15 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
   d.times.mesh += seconds_since(t);
 
   t = std::chrono::steady_clock::now();
-  d.spectrum.reset(new Laplace_beltrami_spectrum(
-      d.mesh, parameters::number_of_eigenpairs(std::min(s.number_of_eigenpairs, n - 1),
-                                               parameters::use_intrinsic_delaunay(s.use_intrinsic_delaunay))));
+  const int k = std::min(s.number_of_eigenpairs, n - 1);
+  if(given)
+  {
+    check_precomputed_spectrum(*given, d.mesh, k, s);
+    d.spectrum.reset(new Laplace_beltrami_spectrum(*given, k));
+  }
+  else
+    d.spectrum.reset(new Laplace_beltrami_spectrum(
+        d.mesh, parameters::number_of_eigenpairs(k, parameters::use_intrinsic_delaunay(s.use_intrinsic_delaunay))));
   d.times.spectrum = seconds_since(t);
 
   t = std::chrono::steady_clock::now();
@@ -203,6 +238,12 @@ public:
   /// \param np optional named parameters:
   ///   - `number_of_eigenpairs` (int, default 100): Laplace-Beltrami eigenpairs for HKS/WKS;
   ///   - `use_intrinsic_delaunay` (bool, default true);
+  ///   - `precomputed_spectrum` (a Laplace_beltrami_spectrum of `tm` with at least
+  ///     `number_of_eigenpairs` eigenpairs and the same `use_intrinsic_delaunay`, best passed as
+  ///     `std::cref(spectrum)`): its first eigenpairs are used instead of a new eigensolve, for
+  ///     example the spectrum already computed for the automatic initialisation (200 eigenpairs
+  ///     by default); a spectrum of another mesh (vertex count or areas) throws
+  ///     Invalid_parameter_error;
   ///   - `hks_weight`, `wks_weight`, `shot_weight`, `user_descriptor_map`,
   ///     `user_descriptor_weight`, `number_of_hks_scales`, `number_of_wks_energies`,
   ///     `wks_variance`, `shot_radius`: the descriptor stack (see descriptor_stack());
@@ -228,7 +269,14 @@ public:
     if constexpr(!std::is_same<typename std::decay<decltype(user_map)>::type,
                                CGAL::internal_np::Param_not_found>::value)
       user = internal::read_user_descriptors(vertices_, user_map);
-    internal::prepare_shape_data<ConcurrencyTag>(*data_, s, user);
+    const auto& given = parameters::get_parameter_reference(np, internal_np::precomputed_spectrum);
+    if constexpr(std::is_same<typename std::decay<decltype(given)>::type, CGAL::internal_np::Param_not_found>::value)
+      internal::prepare_shape_data<ConcurrencyTag>(*data_, s, user);
+    else
+    {
+      const Laplace_beltrami_spectrum& spectrum = given;
+      internal::prepare_shape_data<ConcurrencyTag>(*data_, s, user, &spectrum);
+    }
   }
 
   /// Number of vertices.

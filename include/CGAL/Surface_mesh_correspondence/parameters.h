@@ -40,6 +40,7 @@ namespace Surface_mesh_correspondence {
   X(number_of_eigenpairs_t, number_of_eigenpairs, number_of_eigenpairs)                  \
   X(use_intrinsic_delaunay_t, use_intrinsic_delaunay, use_intrinsic_delaunay)            \
   X(eigen_shift_t, eigen_shift, eigen_shift)                                             \
+  X(precomputed_spectrum_t, precomputed_spectrum, precomputed_spectrum)                  \
   /* descriptors */                                                                      \
   X(number_of_hks_scales_t, number_of_hks_scales, number_of_hks_scales)                  \
   X(number_of_wks_energies_t, number_of_wks_energies, number_of_wks_energies)            \

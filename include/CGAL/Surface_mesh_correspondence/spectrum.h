@@ -346,6 +346,24 @@ public:
     compute(mesh, np);
   }
 
+  /// The first `k` eigenpairs of `larger` with its matrices: the spectrum of the same mesh with
+  /// fewer eigenpairs, without a second eigensolve. It equals a spectrum computed with
+  /// `number_of_eigenpairs(k)` up to the eigensolver's tolerance (and, within an eigenspace that
+  /// the k-th eigenvalue splits, up to a rotation of the eigenvectors).
+  /// \throws Invalid_parameter_error unless 1 <= k <= larger.number_of_eigenpairs()
+  Laplace_beltrami_spectrum(const Laplace_beltrami_spectrum& larger, int k)
+      : matrices_(larger.matrices_), total_area_(larger.total_area_),
+        number_of_components_(larger.number_of_components_), use_intrinsic_delaunay_(larger.use_intrinsic_delaunay_),
+        statistics_(larger.statistics_)
+  {
+    if(k < 1 || k > larger.number_of_eigenpairs())
+      throw Invalid_parameter_error("Laplace-Beltrami spectrum: cannot take " + std::to_string(k) +
+                                    " eigenpairs from a spectrum of " +
+                                    std::to_string(larger.number_of_eigenpairs()));
+    eigenvalues_ = larger.eigenvalues_.head(k);
+    eigenvectors_ = larger.eigenvectors_.leftCols(k);
+  }
+
   /// The k eigenvalues, ascending (\f$ \lambda_0 = 0 \f$).
   const Eigen::VectorXd& eigenvalues() const { return eigenvalues_; }
   /// The n x k matrix of M-orthonormal eigenvectors (column j goes with eigenvalue j).
