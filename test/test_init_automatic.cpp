@@ -247,6 +247,54 @@ BOOST_AUTO_TEST_CASE(sample_geodesics_match_great_circles)
   BOOST_TEST(worst < 0.025);  // 1.6% of the largest distance, pi / 2 (fast marching on 2562 vertices)
 }
 
+BOOST_AUTO_TEST_CASE(row_cache_gives_the_distances_of_new_runs)
+{
+  // The distortion scores of later passes look up fast-marching rows of earlier ones. Sequences of
+  // vertex sets as the passes make them (overlapping, one confined to a cap whose runs stop early,
+  // then one that needs the far side) must give exactly the distances of runs without the cache.
+  namespace smci = smc::internal;
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(icosphere(3));  // 642 vertices
+  const int n = m.number_of_vertices();
+  smci::Fast_marching_geometry g;
+  g.build(m);
+  std::vector<int> spread, cap, far, mixed;
+  for(int v = 0; v < n; v += 9) spread.push_back(v);
+  for(int v = 0; v < n; ++v)
+    if(m.point(v).z() > 0.8) cap.push_back(v);
+    else if(m.point(v).z() < -0.8) far.push_back(v);
+  BOOST_TEST_REQUIRE(cap.size() > 5u);
+  BOOST_TEST_REQUIRE(far.size() > 5u);
+  mixed = cap;
+  mixed.insert(mixed.end(), far.begin(), far.end());
+  mixed.insert(mixed.end(), spread.begin(), spread.begin() + 20);
+  smci::Fast_marching_row_cache cache, tiny(std::size_t(n) * sizeof(double));  // tiny: room for one row
+  auto differences = [&](const std::vector<int>& set, smci::Fast_marching_row_cache& c) {
+    smci::Vertex_set_distances plain, cached;
+    plain.compute<CGAL::Sequential_tag>(g, set, 2.0);
+    cached.compute<CGAL::Parallel_tag>(g, set, 2.0, &c);
+    int different = 0;
+    for(int a : set)
+      for(int b : set) different += plain.distance(a, b) != cached.distance(a, b);
+    return different;
+  };
+  BOOST_TEST(differences(spread, cache) == 0);
+  BOOST_TEST(cache.size() == spread.size());
+  BOOST_TEST(differences(cap, cache) == 0);
+  // Runs from the cap stopped once the cap was accepted: their rows do not reach the far side.
+  const int probe = *std::find_if(cap.begin(), cap.end(), [](int v) { return v % 9 != 0; });  // not in spread
+  const std::vector<double>* row = cache.find(probe);
+  BOOST_TEST_REQUIRE(row != nullptr);
+  BOOST_TEST(!std::isfinite((*row)[std::size_t(far.front())]));
+  BOOST_TEST(differences(mixed, cache) == 0);  // rerun where the rows fall short, rows replaced
+  BOOST_TEST(std::isfinite((*cache.find(probe))[std::size_t(far.front())]));
+  BOOST_TEST(differences(spread, cache) == 0);
+  BOOST_TEST(cache.memory_bytes() == cache.size() * std::size_t(n) * sizeof(double));
+  // A budget of one row keeps one row, and the distances stay exact.
+  BOOST_TEST(differences(spread, tiny) == 0);
+  BOOST_TEST(differences(mixed, tiny) == 0);
+  BOOST_TEST(tiny.size() == 1u);
+}
+
 namespace {
 
 /// The distortion score's inputs on the pair: fast marching on both meshes, 100 farthest-point
