@@ -357,7 +357,8 @@ BOOST_AUTO_TEST_CASE(shape_takes_the_leading_eigenpairs_of_a_precomputed_spectru
                         Shape s(m, params::precomputed_spectrum(std::cref(of_bigger), shape_parameters()));
                       }),
                       "not a spectrum of this mesh"));
-  const smc::Laplace_beltrami_spectrum plain(m, params::number_of_eigenpairs(40, params::use_intrinsic_delaunay(false)));
+  const smc::Laplace_beltrami_spectrum plain(m,
+                                             params::number_of_eigenpairs(40, params::use_intrinsic_delaunay(false)));
   BOOST_TEST(contains(error_of<smc::Invalid_parameter_error>([&] {
                         Shape s(m, params::precomputed_spectrum(std::cref(plain), shape_parameters()));
                       }),

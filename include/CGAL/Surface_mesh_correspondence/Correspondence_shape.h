@@ -165,7 +165,8 @@ inline void check_precomputed_spectrum(const Laplace_beltrami_spectrum& given, c
   for(int f = 0; f < mesh.number_of_triangles(); ++f)
     for(int c = 0; c < 3; ++c) area[std::size_t(mesh.triangles(f, c))] += mesh.triangle_areas[std::size_t(f)] / 3;
   for(int v = 0; v < n; ++v)
-    if(!(std::abs(given.mass()[v] - area[std::size_t(v)]) <= 1e-9 * area[std::size_t(v)] + 1e-12 * mesh.total_area))
+    if(!(std::abs(given.mass()[v] - area[std::size_t(v)]) <=
+         1e-9 * area[std::size_t(v)] + 1e-12 * mesh.total_area))
       throw Invalid_parameter_error(what + "not a spectrum of this mesh (vertex " + std::to_string(v) +
                                     " has area " + std::to_string(area[std::size_t(v)]) + ", mass " +
                                     std::to_string(given.mass()[v]) + " in the spectrum)");

@@ -758,7 +758,8 @@ public:
     for(std::size_t i = 0; i < q; ++i)
     {
       const std::vector<double>* row = cache ? cache->find(vertices_[i]) : nullptr;
-      if(row && std::all_of(vertices_.begin(), vertices_.end(), [row](int v) { return std::isfinite((*row)[std::size_t(v)]); }))
+      const auto accepted = [row](int v) { return std::isfinite((*row)[std::size_t(v)]); };
+      if(row && std::all_of(vertices_.begin(), vertices_.end(), accepted))
         cached[i] = row;
       else
         runs.push_back(i);
