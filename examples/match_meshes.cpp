@@ -46,13 +46,21 @@ int main(int argc, char** argv)
   }
   try
   {
-    // 1. Initial maps from the two meshes alone (functional maps + ZoomOut).
+    // 1. The prepared shapes (spectrum, descriptors, distance oracle). One eigensolve per shape
+    //    serves both steps: the initialisation needs 200 eigenpairs, the refinement's descriptors
+    //    the first 100, and the shapes keep the 200 for the initialisation.
+    const smc::Laplace_beltrami_spectrum spectrum_1(m1, smc::parameters::number_of_eigenpairs(200)),
+        spectrum_2(m2, smc::parameters::number_of_eigenpairs(200));
+    const smc::Correspondence_shape<Mesh, Concurrency> s1(
+        m1, smc::parameters::precomputed_spectrum(std::cref(spectrum_1))),
+        s2(m2, smc::parameters::precomputed_spectrum(std::cref(spectrum_2)));
+
+    // 2. Initial maps from the two shapes alone (functional maps + ZoomOut).
     smc::Vertex_index_map_vector x12, x21;
-    const smc::Automatic_initialization_result init = smc::automatic_initial_maps<Concurrency>(m1, m2, x12, x21);
+    const smc::Automatic_initialization_result init = smc::automatic_initial_maps<Concurrency>(s1, s2, x12, x21);
     std::cerr << "automatic initial maps in " << init.total_seconds << " s\n";
 
-    // 2. Coupled refinement on the prepared shapes (spectrum, descriptors, distance oracle).
-    const smc::Correspondence_shape<Mesh, Concurrency> s1(m1), s2(m2);
+    // 3. Coupled refinement on the same shapes.
     Print_steps visitor;
     const smc::Coupled_refinement_result r = smc::refine_coupled_maps(
         s1, s2, x12, x21,

@@ -178,6 +178,18 @@ inline std::vector<std::size_t> all_vertices(std::size_t n)
   return v;
 }
 
+/// Fraction of the entries where two maps of the same size agree.
+inline double fraction_equal(const std::vector<std::size_t>& a, const std::vector<std::size_t>& b)
+{
+  if(a.size() != b.size() || a.empty())
+    throw std::invalid_argument("fraction_equal: maps of sizes " + std::to_string(a.size()) + " and " +
+                                std::to_string(b.size()));
+  std::size_t same = 0;
+  for(std::size_t i = 0; i < a.size(); ++i)
+    same += a[i] == b[i];
+  return double(same) / double(a.size());
+}
+
 } // namespace smc_test
 
 #endif // SMC_TEST_PAIRS_H

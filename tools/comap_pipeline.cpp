@@ -54,7 +54,9 @@ std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh
                              name));
     p->times = p->shape->preprocessing_times();
     p->spectrum_from_initialization = true;
-    p->own_mesh_.reset();  // the shape's flat copy is the same
+    p->own_mesh_.reset();      // the shape's flat copy is the same
+    p->own_spectrum_.reset();  // and the shape keeps the whole spectrum
+
   }
   else if(for_refinement)
   {
@@ -64,8 +66,8 @@ std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh
   if(for_initialization)
   {
     const Stopwatch t;
-    if(!p->own_spectrum_ && (!p->shape || p->shape->spectrum().number_of_eigenpairs() != needed ||
-                             !p->shape->spectrum().uses_intrinsic_delaunay()))
+    if(!p->own_spectrum_ && (!p->shape || p->shape->data().largest_spectrum().number_of_eigenpairs() != needed ||
+                             !p->shape->data().largest_spectrum().uses_intrinsic_delaunay()))
       p->own_spectrum_.reset(
           new smc::Laplace_beltrami_spectrum(p->indexed_mesh(), smc::parameters::number_of_eigenpairs(needed)));
     p->initialization_descriptors = smc::internal::initialization_descriptors<Concurrency>(
@@ -88,7 +90,7 @@ std::string preparation_summary(const Prepared_shape& s)
           ", geodesic distances " + duration(s.times.distances);
   if(s.initialization_descriptors.size() > 0)
     out += std::string(out.empty() ? "" : ", ") + "initialisation " +
-           (s.shape && &s.initialization_spectrum() == s.shape->data().spectrum.get()
+           (s.shape && &s.initialization_spectrum() == &s.shape->data().largest_spectrum()
                 ? std::string("descriptors ")
                 : "spectrum (" + std::to_string(s.initialization_spectrum().number_of_eigenpairs()) +
                       " eigenpairs) and descriptors ") +

@@ -51,7 +51,7 @@ public:
   /// The spectrum of the initialisation.
   const smc::Laplace_beltrami_spectrum& initialization_spectrum() const
   {
-    return own_spectrum_ ? *own_spectrum_ : *shape->data().spectrum;
+    return own_spectrum_ ? *own_spectrum_ : shape->data().largest_spectrum();
   }
   std::size_t number_of_vertices() const { return num_vertices(mesh); }
   /// An evaluator of maps into this shape (built on first use; not thread-safe).

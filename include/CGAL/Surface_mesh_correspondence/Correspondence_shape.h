@@ -62,6 +62,9 @@ struct Shape_data
   Indexed_mesh mesh;
   double scale = 1;  ///< sqrt(total area): every distance is divided by it
   std::unique_ptr<Laplace_beltrami_spectrum> spectrum;
+  /// A copy of the `precomputed_spectrum` when it has more eigenpairs than `spectrum` (null
+  /// otherwise): automatic_initial_maps() on the shape takes its eigenpairs from it.
+  std::shared_ptr<const Laplace_beltrami_spectrum> larger_spectrum;
   Eigen::MatrixXf descriptors;  ///< n x D descriptor stack
   std::variant<Local_distance_oracle, Dense_distance_oracle> oracle;
   std::unique_ptr<Nearest_vertex_search> nearest;
@@ -72,6 +75,8 @@ struct Shape_data
   Shape_preprocessing_times times;
 
   int number_of_vertices() const { return mesh.number_of_vertices(); }
+  /// The spectrum with the most eigenpairs that the shape holds.
+  const Laplace_beltrami_spectrum& largest_spectrum() const { return larger_spectrum ? *larger_spectrum : *spectrum; }
 
   /// Breadth-first order over every component, starting each component at its smallest vertex.
   void compute_node_order()
@@ -191,6 +196,8 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
   {
     check_precomputed_spectrum(*given, d.mesh, k, s);
     d.spectrum.reset(new Laplace_beltrami_spectrum(*given, k));
+    if(given->number_of_eigenpairs() > k)
+      d.larger_spectrum = std::make_shared<const Laplace_beltrami_spectrum>(*given);
   }
   else
     d.spectrum.reset(new Laplace_beltrami_spectrum(
@@ -244,7 +251,8 @@ public:
   ///     `std::cref(spectrum)`): its first eigenpairs are used instead of a new eigensolve, for
   ///     example the spectrum already computed for the automatic initialisation (200 eigenpairs
   ///     by default); a spectrum of another mesh (vertex count or areas) throws
-  ///     Invalid_parameter_error;
+  ///     Invalid_parameter_error. When it has more eigenpairs than the shape uses, the shape
+  ///     keeps a copy, and automatic_initial_maps() on the shape takes its eigenpairs from it;
   ///   - `hks_weight`, `wks_weight`, `shot_weight`, `user_descriptor_map`,
   ///     `user_descriptor_weight`, `number_of_hks_scales`, `number_of_wks_energies`,
   ///     `wks_variance`, `shot_radius`: the descriptor stack (see descriptor_stack());

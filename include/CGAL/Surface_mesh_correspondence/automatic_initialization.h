@@ -91,6 +91,9 @@ struct Automatic_initialization_result
   double sample_distortion_before = 0, sample_distortion = 0;
   /// Passes run in all (fits and ZoomOut: the first one and the repair passes, kept or not).
   int passes = 0;
+  /// Spectra taken from the prepared shapes (0, 1 or 2) instead of computed (the overload on
+  /// Correspondence_shape objects; always 0 for the one on meshes).
+  int reused_spectra = 0;
   /// The final functional maps (unit-area bases): C12 (k x k, pulls functions from mesh 2 back
   /// to mesh 1, the map of map_12) and C21.
   Eigen::MatrixXd functional_map_12, functional_map_21;
@@ -1568,13 +1571,15 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
 }
 
 /// The spectrum and the descriptors of one flat mesh for automatic_initial_maps(): `given` is
-/// reused when it has exactly the eigenpairs the initialisation needs on the intrinsic Delaunay
-/// triangulation (then the maps equal those computed from the mesh alone), else computed.
+/// reused when it has at least the eigenpairs the initialisation needs on the intrinsic Delaunay
+/// triangulation (exactly as many: the maps equal those computed from the mesh alone; more: its
+/// leading eigenpairs, equal to a new solve's up to the solver's tolerance), else computed.
 struct Initialization_mesh_data
 {
   std::unique_ptr<Laplace_beltrami_spectrum> own_spectrum;
   const Laplace_beltrami_spectrum* spectrum = nullptr;
   Eigen::MatrixXd descriptors;
+  bool reused = false;
 };
 
 inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_beltrami_spectrum* given,
@@ -1587,8 +1592,14 @@ inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_bel
     throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
                              std::to_string(m.number_of_vertices()) + " vertices, too few for a basis of " +
                              std::to_string(k) + " eigenfunctions (reduce zoomout_final_size)");
-  if(given && given->number_of_eigenpairs() == k && given->uses_intrinsic_delaunay())
+  out.reused = given && given->number_of_eigenpairs() >= k && given->uses_intrinsic_delaunay();
+  if(out.reused && given->number_of_eigenpairs() == k)
     out.spectrum = given;
+  else if(out.reused)
+  {
+    out.own_spectrum.reset(new Laplace_beltrami_spectrum(*given, k));
+    out.spectrum = out.own_spectrum.get();
+  }
   else
   {
     out.own_spectrum.reset(new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
@@ -1613,6 +1624,7 @@ Automatic_initialization_result on_prepared_meshes(const Indexed_mesh& m1, const
   const Initialization_shape a{&m1, d1.spectrum, &d1.descriptors}, b{&m2, d2.spectrum, &d2.descriptors};
   Automatic_initialization_result r = f(a, b);
   r.spectra_seconds = prepare_seconds;
+  r.reused_spectra = int(d1.reused) + int(d2.reused);
   r.total_seconds = seconds_since(start);
   return r;
 }
@@ -1740,12 +1752,16 @@ Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1,
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// automatic_initial_maps() on two prepared shapes, to be refined with the same shapes. The
-/// shapes' flat meshes are reused, and their spectra too when they have exactly the eigenpairs
-/// the initialisation needs on the intrinsic Delaunay triangulation (prepare them with
-/// `number_of_eigenpairs(200)` for the defaults); otherwise the spectrum is computed. The
-/// initialisation's descriptors are recomputed on every call (they are not stored in the shape).
-/// The maps are then exactly those of the mesh-based overload with the same named parameters
-/// (`np`: the initialisation's parameters, as there), and can be passed to
+/// shapes' flat meshes are reused, and their spectra too when they hold at least the eigenpairs
+/// the initialisation needs (200 by default) on the intrinsic Delaunay triangulation: either
+/// their own spectrum (prepared with `number_of_eigenpairs(200)`), or a larger
+/// `precomputed_spectrum` that they were given (one eigensolve per shape serves both: compute
+/// 200 eigenpairs, give them to a shape that uses 100); otherwise the spectrum is computed
+/// (`reused_spectra` of the result counts the reused ones). The initialisation's descriptors are
+/// recomputed on every call (they are not stored in the shape). With a spectrum of exactly the
+/// needed size the maps are exactly those of the mesh-based overload with the same named
+/// parameters (`np`: the initialisation's parameters, as there); leading eigenpairs of a larger
+/// one equal a new solve's up to the eigensolver's tolerance. The maps can be passed to
 /// refine_coupled_maps() with the same shapes.
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename Tag1,
           typename TriangleMesh2, typename Tag2, typename NamedParameters = parameters::Default_named_parameters>
@@ -1759,8 +1775,8 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
   const internal::Initialization_settings s = internal::initialization_settings(np);
   internal::check_initialization_settings(s);
   return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(
-      shape_1.data().mesh, shape_1.data().spectrum.get(), shape_2.data().mesh, shape_2.data().spectrum.get(), s,
-      map_12, map_21, start);
+      shape_1.data().mesh, &shape_1.data().largest_spectrum(), shape_2.data().mesh,
+      &shape_2.data().largest_spectrum(), s, map_12, map_21, start);
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
