@@ -12,6 +12,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,12 +49,15 @@ int main(int argc, char** argv)
   {
     // 1. The prepared shapes (spectrum, descriptors, distance oracle). One eigensolve per shape
     //    serves both steps: the initialisation needs 200 eigenpairs, the refinement's descriptors
-    //    the first 100, and the shapes keep the 200 for the initialisation.
-    const smc::Laplace_beltrami_spectrum spectrum_1(m1, smc::parameters::number_of_eigenpairs(200)),
-        spectrum_2(m2, smc::parameters::number_of_eigenpairs(200));
-    const smc::Correspondence_shape<Mesh, Concurrency> s1(
-        m1, smc::parameters::precomputed_spectrum(std::cref(spectrum_1))),
-        s2(m2, smc::parameters::precomputed_spectrum(std::cref(spectrum_2)));
+    //    the first 100, and the shapes share the 200 for the initialisation (a shared pointer is
+    //    shared; a spectrum passed as std::cref(spectrum) would be copied).
+    typedef std::shared_ptr<const smc::Laplace_beltrami_spectrum> Spectrum_ptr;
+    const Spectrum_ptr spectrum_1 = std::make_shared<const smc::Laplace_beltrami_spectrum>(
+                           m1, smc::parameters::number_of_eigenpairs(200)),
+                       spectrum_2 = std::make_shared<const smc::Laplace_beltrami_spectrum>(
+                           m2, smc::parameters::number_of_eigenpairs(200));
+    const smc::Correspondence_shape<Mesh, Concurrency> s1(m1, smc::parameters::precomputed_spectrum(spectrum_1)),
+        s2(m2, smc::parameters::precomputed_spectrum(spectrum_2));
 
     // 2. Initial maps from the two shapes alone (functional maps + ZoomOut).
     smc::Vertex_index_map_vector x12, x21;

@@ -713,13 +713,20 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_give_the_same_maps)
   BOOST_TEST(a21 == b21);
   // One eigensolve serves both: a shape that uses 100 eigenpairs of a given spectrum of 200
   // keeps the 200 for the initialisation (the same maps); of a larger one, the leading 200.
-  const smc::Laplace_beltrami_spectrum full(f.pair.m2, params::number_of_eigenpairs(200)),
-      larger(f.pair.m1, params::number_of_eigenpairs(230));
+  // Given by shared pointer, the spectrum is shared; by reference, copied.
+  const auto full =
+      std::make_shared<const smc::Laplace_beltrami_spectrum>(f.pair.m2, params::number_of_eigenpairs(200));
+  const smc::Laplace_beltrami_spectrum larger(f.pair.m1, params::number_of_eigenpairs(230));
   const smc::Correspondence_shape<Mesh> s3(f.pair.m2,
-                                           params::precomputed_spectrum(std::cref(full), params::number_of_eigenpairs(100))),
+                                           params::precomputed_spectrum(full, params::number_of_eigenpairs(100))),
       s4(f.pair.m1, params::precomputed_spectrum(std::cref(larger), params::number_of_eigenpairs(100)));
   BOOST_TEST(s3.spectrum().number_of_eigenpairs() == 100);
-  BOOST_TEST(s3.data().largest_spectrum().number_of_eigenpairs() == 200);
+  BOOST_TEST(&s3.data().largest_spectrum() == full.get());
+  BOOST_TEST(s4.data().largest_spectrum().number_of_eigenpairs() == 230);
+  BOOST_TEST(&s4.data().largest_spectrum() != &larger);
+  const std::shared_ptr<const smc::Laplace_beltrami_spectrum> null;
+  BOOST_CHECK_THROW(smc::Correspondence_shape<Mesh>(f.pair.m2, params::precomputed_spectrum(null)),
+                    smc::Invalid_parameter_error);
   BOOST_TEST(s2.data().largest_spectrum().number_of_eigenpairs() == 40);
   std::vector<std::size_t> d12, d21, e12, e21;
   BOOST_TEST(smc::automatic_initial_maps(s1, s3, d12, d21).reused_spectra == 2);

@@ -49,14 +49,13 @@ std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh
     initialization_spectrum_seconds = t.seconds();
     p->shape.reset(new Shape(p->mesh,
                              smc::parameters::precomputed_spectrum(
-                                 std::cref(*p->own_spectrum_),
+                                 p->own_spectrum_,  // shared with the shape, not copied
                                  shape_parameters(settings.shape, settings.shape.number_of_eigenpairs)),
                              name));
     p->times = p->shape->preprocessing_times();
     p->spectrum_from_initialization = true;
     p->own_mesh_.reset();      // the shape's flat copy is the same
     p->own_spectrum_.reset();  // and the shape keeps the whole spectrum
-
   }
   else if(for_refinement)
   {

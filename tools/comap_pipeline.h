@@ -61,7 +61,7 @@ private:
   friend std::unique_ptr<Prepared_shape> prepare_shape(const std::string&, Mesh, const Settings&, bool, bool,
                                                        const Progress&);
   std::unique_ptr<smc::internal::Indexed_mesh> own_mesh_;
-  std::unique_ptr<smc::Laplace_beltrami_spectrum> own_spectrum_;
+  std::shared_ptr<const smc::Laplace_beltrami_spectrum> own_spectrum_;
   mutable std::unique_ptr<Evaluator> evaluator_;
 };
 

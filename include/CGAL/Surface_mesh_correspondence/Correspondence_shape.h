@@ -179,9 +179,11 @@ inline void check_precomputed_spectrum(const Laplace_beltrami_spectrum& given, c
 
 /// Computes everything but the flat mesh, which `d.mesh` already holds. With `given`, the spectrum
 /// is its first eigenpairs (check_precomputed_spectrum()) instead of a new eigensolve.
+/// `shared_given`, when not null, is `given` owned elsewhere too: kept without a copy.
 template <typename ConcurrencyTag>
 void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::MatrixXd& user_descriptors,
-                        const Laplace_beltrami_spectrum* given = nullptr)
+                        const Laplace_beltrami_spectrum* given = nullptr,
+                        std::shared_ptr<const Laplace_beltrami_spectrum> shared_given = nullptr)
 {
   auto t = std::chrono::steady_clock::now();
   const int n = d.mesh.number_of_vertices();
@@ -197,7 +199,8 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
     check_precomputed_spectrum(*given, d.mesh, k, s);
     d.spectrum.reset(new Laplace_beltrami_spectrum(*given, k));
     if(given->number_of_eigenpairs() > k)
-      d.larger_spectrum = std::make_shared<const Laplace_beltrami_spectrum>(*given);
+      d.larger_spectrum =
+          shared_given ? std::move(shared_given) : std::make_shared<const Laplace_beltrami_spectrum>(*given);
   }
   else
     d.spectrum.reset(new Laplace_beltrami_spectrum(
@@ -253,6 +256,8 @@ public:
   ///     by default); a spectrum of another mesh (vertex count or areas) throws
   ///     Invalid_parameter_error. When it has more eigenpairs than the shape uses, the shape
   ///     keeps a copy, and automatic_initial_maps() on the shape takes its eigenpairs from it;
+  ///     passed as a `std::shared_ptr<const Laplace_beltrami_spectrum>`, it is shared instead of
+  ///     copied;
   ///   - `hks_weight`, `wks_weight`, `shot_weight`, `user_descriptor_map`,
   ///     `user_descriptor_weight`, `number_of_hks_scales`, `number_of_wks_energies`,
   ///     `wks_variance`, `shot_radius`: the descriptor stack (see descriptor_stack());
@@ -281,6 +286,12 @@ public:
     const auto& given = parameters::get_parameter_reference(np, internal_np::precomputed_spectrum);
     if constexpr(std::is_same<typename std::decay<decltype(given)>::type, CGAL::internal_np::Param_not_found>::value)
       internal::prepare_shape_data<ConcurrencyTag>(*data_, s, user);
+    else if constexpr(std::is_convertible<typename std::decay<decltype(given)>::type,
+                                          std::shared_ptr<const Laplace_beltrami_spectrum>>::value)
+    {
+      if(!given) throw Invalid_parameter_error("precomputed_spectrum: a null pointer");
+      internal::prepare_shape_data<ConcurrencyTag>(*data_, s, user, given.get(), given);
+    }
     else
     {
       const Laplace_beltrami_spectrum& spectrum = given;
