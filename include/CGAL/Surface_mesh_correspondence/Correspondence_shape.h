@@ -62,8 +62,9 @@ struct Shape_data
   Indexed_mesh mesh;
   double scale = 1;  ///< sqrt(total area): every distance is divided by it
   std::unique_ptr<Laplace_beltrami_spectrum> spectrum;
-  /// A copy of the `precomputed_spectrum` when it has more eigenpairs than `spectrum` (null
-  /// otherwise): automatic_initial_maps() on the shape takes its eigenpairs from it.
+  /// The `precomputed_spectrum` (shared when given by shared pointer, else a copy) when it has
+  /// more eigenpairs than `spectrum` (null otherwise): automatic_initial_maps() on the shape
+  /// takes its eigenpairs from it.
   std::shared_ptr<const Laplace_beltrami_spectrum> larger_spectrum;
   Eigen::MatrixXf descriptors;  ///< n x D descriptor stack
   std::variant<Local_distance_oracle, Dense_distance_oracle> oracle;
