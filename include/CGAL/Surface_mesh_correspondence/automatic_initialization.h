@@ -1595,14 +1595,10 @@ inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_bel
   out.reused = given && given->number_of_eigenpairs() >= k && given->uses_intrinsic_delaunay();
   if(out.reused && given->number_of_eigenpairs() == k)
     out.spectrum = given;
-  else if(out.reused)
-  {
-    out.own_spectrum.reset(new Laplace_beltrami_spectrum(*given, k));
-    out.spectrum = out.own_spectrum.get();
-  }
   else
   {
-    out.own_spectrum.reset(new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
+    out.own_spectrum.reset(out.reused ? new Laplace_beltrami_spectrum(*given, k)
+                                      : new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
     out.spectrum = out.own_spectrum.get();
   }
   out.descriptors = initialization_descriptors<CGAL::Sequential_tag>(m, *out.spectrum, s);
