@@ -54,6 +54,9 @@ struct Shape_preprocessing_times
   double total() const { return mesh + spectrum + descriptors + distances; }
 };
 
+/// An n x D descriptor stack stored row by row.
+typedef Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Descriptor_matrix;
+
 namespace internal {
 
 /// Index-based precomputed data of a shape (what the algorithms use).
@@ -66,7 +69,9 @@ struct Shape_data
   /// more eigenpairs than `spectrum` (null otherwise): automatic_initial_maps() on the shape
   /// takes its eigenpairs from it.
   std::shared_ptr<const Laplace_beltrami_spectrum> larger_spectrum;
-  Eigen::MatrixXf descriptors;  ///< n x D descriptor stack
+  /// n x D descriptor stack, row-major: the MRF's unary terms read whole rows (vertex
+  /// descriptors) at random, and a column-major row is D cache lines apart.
+  Descriptor_matrix descriptors;
   std::variant<Local_distance_oracle, Dense_distance_oracle> oracle;
   std::unique_ptr<Nearest_vertex_search> nearest;
   /// Node order of the MRFs whose nodes are this shape's vertices: a breadth-first order, which
@@ -308,8 +313,8 @@ public:
   const std::vector<vertex_descriptor>& vertices() const { return vertices_; }
   /// The Laplace-Beltrami spectrum.
   const Laplace_beltrami_spectrum& spectrum() const { return *data_->spectrum; }
-  /// The n x D descriptor stack (row i: vertex i).
-  const Eigen::MatrixXf& descriptors() const { return data_->descriptors; }
+  /// The n x D descriptor stack (row i: vertex i), stored row-major.
+  const Descriptor_matrix& descriptors() const { return data_->descriptors; }
   /// \f$\sqrt{\mathrm{area}}\f$: the unit in which the algorithms measure distances.
   double scale() const { return data_->scale; }
   /// Seconds spent on each preprocessing stage.

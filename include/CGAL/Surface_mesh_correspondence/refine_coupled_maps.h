@@ -230,7 +230,8 @@ struct Refinement_workspace
   Discrete_energy<float> energy;
   Trws_solver<float> solver;
   Candidate_sets candidates;
-  std::vector<std::pair<int, int> > edges;  ///< MRF edges (node pairs) of the current source
+  std::vector<std::pair<int, int> > edges;  ///< MRF edges (node pairs u < v) of the current source, sorted
+  std::vector<std::size_t> first_edge;      ///< node u -> its first edge (u, v); size n + 1
   std::vector<int> label_counts;
   std::vector<int> labeling;
 };
@@ -328,6 +329,9 @@ void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<in
       }
     }
     std::sort(w.edges.begin(), w.edges.end());
+    w.first_edge.assign(static_cast<std::size_t>(n) + 1, 0);
+    for(const auto& e : w.edges) ++w.first_edge[static_cast<std::size_t>(e.first) + 1];
+    for(int u = 0; u < n; ++u) w.first_edge[u + 1] += w.first_edge[u];
   }
   w.energy.reset(w.label_counts, w.edges);
 
@@ -358,31 +362,66 @@ void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<in
       },
       S.oracle);
 
+  // Pairwise tables, node by node: node u's edges (u, v) need the target distances from each
+  // candidate of u to the candidates of its neighbours v, so the union L of those candidate sets
+  // is indexed once (slot[l] = 1 + position in L) and each candidate's oracle row is walked once
+  // for all of u's edges, instead of one search per table entry.
+  const int number_of_targets = T.number_of_vertices();
+  Object_pool<std::vector<int> > slot_pool([number_of_targets]() {
+    return std::unique_ptr<std::vector<int> >(new std::vector<int>(static_cast<std::size_t>(number_of_targets), 0));
+  });
   std::visit(
       [&](const auto& source_oracle) {
         std::visit(
             [&](const auto& target_oracle) {
               parallel_for_ranges<ConcurrencyTag>(
-                  w.edges.size(),
+                  static_cast<std::size_t>(n),
                   [&](std::size_t b, std::size_t e) {
-                    std::vector<float> row;
-                    for(std::size_t edge = b; edge < e; ++edge)
+                    std::unique_ptr<std::vector<int> > slot_holder = slot_pool.acquire();
+                    std::vector<int>& slot = *slot_holder; // all 0 between nodes
+                    std::vector<int> set;
+                    std::vector<float> row, source_lengths;
+                    for(std::size_t u = b; u < e; ++u)
                     {
-                      const int u = w.edges[edge].first, v = w.edges[edge].second;
-                      const float d1 = source_oracle.distance(S.node_order[u], S.node_order[v]) * source_unit;
-                      const int ku = w.label_counts[u], kv = w.label_counts[v];
+                      const std::size_t edges_begin = w.first_edge[u], edges_end = w.first_edge[u + 1];
+                      if(edges_begin == edges_end) continue;
+                      set.clear();
+                      for(std::size_t edge = edges_begin; edge < edges_end; ++edge)
+                      {
+                        const int v = w.edges[edge].second;
+                        for(int k = C.offsets[v]; k < C.offsets[v + 1]; ++k)
+                          if(slot[C.labels[k]] == 0)
+                          {
+                            set.push_back(C.labels[k]);
+                            slot[C.labels[k]] = static_cast<int>(set.size());
+                          }
+                      }
+                      row.resize(set.size() + 1);
+                      source_lengths.clear();
+                      for(std::size_t edge = edges_begin; edge < edges_end; ++edge)
+                        source_lengths.push_back(
+                            source_oracle.distance(S.node_order[u], S.node_order[w.edges[edge].second]) *
+                            source_unit);
+                      const int ku = w.label_counts[u];
                       const int* lu = C.labels.data() + C.offsets[u];
-                      const int* lv = C.labels.data() + C.offsets[v];
-                      float* table = w.energy.pairwise_costs(edge);
-                      row.resize(static_cast<std::size_t>(kv));
                       for(int a = 0; a < ku; ++a)
                       {
-                        target_oracle.distances(lu[a], lv, static_cast<std::size_t>(kv), row.data());
-                        for(int c = 0; c < kv; ++c) table[a * kv + c] = std::abs(d1 - row[c] * target_unit);
+                        target_oracle.distances_to_set(lu[a], slot.data(), set.data(), set.size(), row.data());
+                        for(std::size_t edge = edges_begin; edge < edges_end; ++edge)
+                        {
+                          const int v = w.edges[edge].second;
+                          const float d1 = source_lengths[edge - edges_begin];
+                          const int kv = w.label_counts[v];
+                          const int* lv = C.labels.data() + C.offsets[v];
+                          float* table = w.energy.pairwise_costs(edge) + a * kv;
+                          for(int c = 0; c < kv; ++c) table[c] = std::abs(d1 - row[slot[lv[c]]] * target_unit);
+                        }
                       }
+                      for(int l : set) slot[l] = 0;
                     }
+                    slot_pool.release(std::move(slot_holder));
                   },
-                  512);
+                  64);
             },
             T.oracle);
       },
