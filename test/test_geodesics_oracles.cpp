@@ -73,6 +73,9 @@ BOOST_AUTO_TEST_CASE(dense_oracle)
   std::vector<float> out(ls.size());
   dense.distances(11, ls.data(), ls.size(), out.data());
   for(std::size_t i = 0; i < ls.size(); ++i) BOOST_TEST(out[i] == dense.distance(11, ls[i]));
+  std::vector<float> shifted(ls.size() + 1, -1.f);
+  dense.distances_to_set(11, nullptr, ls.data(), ls.size(), shifted.data());
+  for(std::size_t i = 0; i < ls.size(); ++i) BOOST_TEST(shifted[i + 1] == dense.distance(11, ls[i]));
 
   // Against exact geodesics from a few sources.
   smci::Exact_geodesic_solver exact(m);
@@ -205,6 +208,32 @@ BOOST_AUTO_TEST_CASE(local_oracle)
   local.distances(7, ls.data(), ls.size(), out.data());
   for(std::size_t i = 0; i < ls.size(); ++i) BOOST_TEST(out[i] == local.distance(7, ls[i]));
   BOOST_TEST(local.distance(7, 7) == 0.f);
+
+  // Set queries (one row walk per source) equal single ones, for sources whose rows hold all, a
+  // part or none of the set, and with the source itself in the set; the slots stay untouched.
+  {
+    std::vector<int> set;
+    for(int l = 0; l < n; l += 5) set.push_back(l);
+    set.push_back(7);
+    std::vector<int> slot(static_cast<std::size_t>(n), 0);
+    for(std::size_t p = 0; p < set.size(); ++p) slot[set[p]] = static_cast<int>(p) + 1;
+    const std::vector<int> slot_before = slot;
+    std::vector<float> row(set.size() + 1);
+    int mismatches = 0, local_hits = 0, far_hits = 0;
+    for(int k = 0; k < n; ++k)
+    {
+      local.distances_to_set(k, slot.data(), set.data(), set.size(), row.data());
+      for(std::size_t p = 0; p < set.size(); ++p)
+      {
+        mismatches += row[p + 1] != local.distance(k, set[p]);
+        (local.is_local(k, set[p]) ? local_hits : far_hits) += 1;
+      }
+    }
+    BOOST_TEST(mismatches == 0);
+    BOOST_TEST(local_hits > 0);
+    BOOST_TEST(far_hits > 0);
+    BOOST_TEST((slot == slot_before));
+  }
 
 #ifdef CGAL_LINKED_WITH_TBB
   const smc::Local_distance_oracle parallel = smc::Local_distance_oracle::build<CGAL::Parallel_tag>(m, radius, 24);
