@@ -136,16 +136,37 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   BOOST_TEST(read_map(in_scratch("g21.map"), 1) == g21);
   BOOST_TEST(g12 != l12);
 
-  // Without --rings, automatic maps are refined with the short schedule 3,2,1 (given maps with
-  // 6,4,3,2,1), and the cycle term's weight is recorded.
-  std::string no_rings = fast_options();
-  no_rings.erase(no_rings.find(" --rings 3,2"), std::string(" --rings 3,2").size());
+  // Without --rings, --candidates and --trws-iterations, automatic maps are refined with the short
+  // schedule 4,3,2,1, 40 candidates and 15 TRW-S iterations; given maps with the library's
+  // defaults (6,4,3,2,1, 20 and 100). The cycle term's weight is recorded.
+  std::string no_refinement_options = fast_options();
+  for(const std::string option : {" --rings 3,2", " --candidates 10", " --trws-iterations 30"})
+    no_refinement_options.erase(no_refinement_options.find(option), option.size());
+  std::string with_progress = no_refinement_options;
+  with_progress.erase(with_progress.find(" --quiet"), std::string(" --quiet").size());
   const Run short_schedule = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch("s12.map") + " --out-21 " +
                                    in_scratch("s21.map") + " --stats " + in_scratch("short.json") +
-                                   " --consistency-weight 0.75" + no_rings);
+                                   " --consistency-weight 0.75" + with_progress);
   BOOST_TEST_REQUIRE(short_schedule.code == 0, short_schedule.err);
-  BOOST_TEST(read_text(in_scratch("short.json")).find("\"ring_schedule\": [3, 2, 1]") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("short.json")).find("\"consistency_weight\": 0.75") != std::string::npos);
+  // The progress announces the settings actually used.
+  BOOST_TEST(short_schedule.err.find("rings 4,3,2,1, 40 candidates") != std::string::npos, short_schedule.err);
+  const std::string short_stats = read_text(in_scratch("short.json"));
+  BOOST_TEST(short_stats.find("\"ring_schedule\": [4, 3, 2, 1]") != std::string::npos);
+  BOOST_TEST(short_stats.find("\"number_of_candidates\": 40,") != std::string::npos);
+  BOOST_TEST(short_stats.find("\"trws_number_of_iterations\": 15,") != std::string::npos);
+  BOOST_TEST(short_stats.find("\"consistency_weight\": 0.75") != std::string::npos);
+  const smc::Refinement_settings library;
+  const Run given_defaults = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("s12.map") + " --init-21 " +
+                                   in_scratch("s21.map") + " --out-12 " + in_scratch("d12.map") + " --out-21 " +
+                                   in_scratch("d21.map") + " --stats " + in_scratch("given_defaults.json") +
+                                   " --outer-iterations 1" + no_refinement_options);
+  BOOST_TEST_REQUIRE(given_defaults.code == 0, given_defaults.err);
+  const std::string given_stats = read_text(in_scratch("given_defaults.json"));
+  BOOST_TEST(given_stats.find("\"ring_schedule\": [6, 4, 3, 2, 1]") != std::string::npos);
+  BOOST_TEST(given_stats.find("\"number_of_candidates\": " + std::to_string(library.number_of_candidates) + ",") !=
+             std::string::npos);
+  BOOST_TEST(given_stats.find("\"trws_number_of_iterations\": " + std::to_string(library.trws_number_of_iterations) +
+                              ",") != std::string::npos);
 
   // Automatic maps with the fast settings, then the whole pipeline with them.
   const Run fast_init = comap("match " + p.a + " " + p.b + " --no-refine --out-12 " + in_scratch("b12.map") +

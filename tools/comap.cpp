@@ -194,7 +194,7 @@ int match(int argc, char** argv)
     const smc::Refinement_settings resolved = resolved_refinement(settings, automatic);
     progress.line("coupled refinement: " + std::to_string(resolved.outer_iterations()) +
                   " outer iterations at most, rings " + join(resolved.ring_schedule) + ", " +
-                  std::to_string(settings.refinement.number_of_candidates) + " candidates");
+                  std::to_string(resolved.number_of_candidates) + " candidates");
     refinement = refine_maps(*s1, *s2, map_12, map_21, settings, automatic, progress);
     progress.line("refinement done in " + duration(refinement.total_seconds) + " (" +
                   smc::to_string(refinement.termination) + ")");

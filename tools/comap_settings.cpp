@@ -63,9 +63,12 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   const Settings d;  // the library's defaults
   smc::Refinement_settings& r = s.refinement;
   p.section("Coupled refinement (Algorithm 1)");
-  p.value("--candidates", "M", "candidate target vertices per source vertex, m",
-          std::to_string(d.refinement.number_of_candidates),
-          [&r](const std::string& v) { r.number_of_candidates = parse_int("--candidates", v, 1, 100000); });
+  p.value("--candidates", "M", "candidate target vertices per source vertex, m (without --candidates: " +
+          std::to_string(d.automatic_number_of_candidates) + " for automatic initial maps)",
+          std::to_string(d.refinement.number_of_candidates), [&r, &s](const std::string& v) {
+            r.number_of_candidates = parse_int("--candidates", v, 1, 100000);
+            s.number_of_candidates_given = true;
+          });
   p.value("--rings", "R1,R2,...", "ring schedule: radius (in rings) of the candidate neighbourhoods at each outer "
           "iteration; the last one repeats (without --rings: " + join(d.automatic_ring_schedule) +
           " for automatic initial maps)",
@@ -109,9 +112,12 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           "auto", [&s](const std::string& v) {
             s.keep_consistent_input_maps = parse_automatic_switch("--keep-input", v, "off", "on");
           });
-  p.value("--trws-iterations", "N", "TRW-S iterations per MRF solve",
-          std::to_string(d.refinement.trws_number_of_iterations),
-          [&r](const std::string& v) { r.trws_number_of_iterations = parse_int("--trws-iterations", v, 1, 1000000); });
+  p.value("--trws-iterations", "N", "TRW-S iterations per MRF solve (without --trws-iterations: " +
+          std::to_string(d.automatic_trws_number_of_iterations) + " for automatic initial maps)",
+          std::to_string(d.refinement.trws_number_of_iterations), [&r, &s](const std::string& v) {
+            r.trws_number_of_iterations = parse_int("--trws-iterations", v, 1, 1000000);
+            s.trws_number_of_iterations_given = true;
+          });
   p.value("--trws-tolerance", "X", "TRW-S stops when the lower bound's relative change is below X",
           shortest(d.refinement.trws_relative_tolerance),
           [&r](const std::string& v) { r.trws_relative_tolerance = parse_double("--trws-tolerance", v); });
@@ -271,6 +277,10 @@ smc::Refinement_settings resolved_refinement(const Settings& settings, bool auto
   r.stop_when_consistency_worsens = resolve_switch(settings.stop_rule, automatic_input);
   if(automatic_input && !settings.ring_schedule_given) r.ring_schedule = settings.automatic_ring_schedule;
   if(automatic_input && !settings.consistency_weight_given) r.consistency_weight = settings.automatic_consistency_weight;
+  if(automatic_input && !settings.number_of_candidates_given)
+    r.number_of_candidates = settings.automatic_number_of_candidates;
+  if(automatic_input && !settings.trws_number_of_iterations_given)
+    r.trws_number_of_iterations = settings.automatic_trws_number_of_iterations;
   return r;
 }
 
