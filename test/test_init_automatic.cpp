@@ -175,6 +175,74 @@ BOOST_AUTO_TEST_CASE(zoomout_fit_solves_the_weighted_least_squares_problem)
   BOOST_TEST((full.fit(all, basis, ks, kt) - projection).norm() < 1e-10 * projection.norm());
 }
 
+BOOST_AUTO_TEST_CASE(coupled_zoomout_finds_the_nearest_points_of_the_joint_embeddings)
+{
+  // One coupled ZoomOut step (initial size = final size: the maps of every vertex) against brute
+  // force in the joint embeddings it reduces: x -> argmin_y |[Phi_1(x) C12, a Phi_1(x), f F_1(x)]
+  // - [Phi_2(y), a Phi_2(y) C21, f F_2(y)]|^2, in double precision.
+  const Mesh m1 = bumpy_capsule(16, 4, 10), m2 = transformed(bumpy_capsule(16, 4, 10), pose);
+  const smc::Laplace_beltrami_spectrum s1(m1, params::number_of_eigenpairs(25)),
+      s2(m2, params::number_of_eigenpairs(25));
+  const int k = 20;
+  const Eigen::MatrixXd basis1 = smc::internal::unit_area_basis(s1, k), basis2 = smc::internal::unit_area_basis(s2, k);
+  const Eigen::VectorXd mass1 = smc::internal::unit_area_mass(s1), mass2 = smc::internal::unit_area_mass(s2);
+  // Maps near the identity with a perturbation, not inverse to each other.
+  Eigen::MatrixXd C12 = Eigen::MatrixXd::Identity(k, k), C21 = Eigen::MatrixXd::Identity(k, k);
+  for(int i = 0; i < k; ++i)
+    for(int j = 0; j < k; ++j)
+    {
+      C12(i, j) += 0.15 * std::sin(1.0 + 3 * i + 7 * j);
+      C21(i, j) += 0.15 * std::cos(2.0 + 5 * i + 2 * j);
+    }
+  // Features: smooth functions of the embedding (three columns per mesh).
+  const Eigen::MatrixXd F1 = basis1.middleCols(1, 3).array().square().matrix(),
+                        F2 = basis2.middleCols(1, 3).array().square().matrix();
+  for(const double bijectivity : {1.0, 0.3})
+    for(const bool with_features : {false, true})
+    {
+      smc::internal::Zoomout_settings zs;
+      zs.final_size = k;
+      zs.bijectivity_weight = bijectivity;
+      smc::internal::Zoomout_features features;
+      if(with_features)
+      {
+        features.source = &F1;
+        features.target = &F2;
+      }
+      Eigen::MatrixXd c12 = C12, c21 = C21;
+      std::vector<int> map12, map21;
+      smc::internal::coupled_zoomout_refine<CGAL::Parallel_tag>(basis1, mass1, basis2, mass2, c12, c21, zs, {}, {}, {}, map12, map21,
+                                                 features);
+      const double a = std::sqrt(bijectivity), f = with_features ? 1.0 : 0.0;
+      auto joint = [&](const Eigen::MatrixXd& basis, const Eigen::MatrixXd& C, const Eigen::MatrixXd& F, bool query) {
+        Eigen::MatrixXd e(basis.rows(), 2 * k + 3);
+        e.leftCols(k) = query ? Eigen::MatrixXd(basis * C) : basis;
+        e.middleCols(k, k) = a * (query ? basis : Eigen::MatrixXd(basis * C));
+        e.rightCols(3) = f * F;
+        return e;
+      };
+      auto check = [&](const Eigen::MatrixXd& q, const Eigen::MatrixXd& d, const std::vector<int>& map) {
+        BOOST_TEST_REQUIRE(map.size() == std::size_t(q.rows()));
+        int exact = 0;
+        double worst = 0;
+        for(Eigen::Index x = 0; x < q.rows(); ++x)
+        {
+          const Eigen::VectorXd dist = (d.rowwise() - q.row(x)).rowwise().squaredNorm();
+          Eigen::Index best;
+          const double min = dist.minCoeff(&best);
+          if(best == map[std::size_t(x)]) ++exact;
+          worst = std::max(worst, dist[map[std::size_t(x)]] - min);
+        }
+        BOOST_TEST_MESSAGE("bijectivity " << bijectivity << ", features " << with_features << ": " << exact << " of "
+                                          << q.rows() << " exact, worst excess " << worst);
+        BOOST_TEST(exact >= 0.99 * double(q.rows()));
+        BOOST_TEST(worst < 1e-4);  // single-precision products of unit-scale embeddings
+      };
+      check(joint(basis1, C12, F1, true), joint(basis2, C21, F2, false), map12);
+      check(joint(basis2, C21, F2, true), joint(basis1, C12, F1, false), map21);
+    }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(automatic_initialization)

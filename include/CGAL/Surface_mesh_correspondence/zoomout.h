@@ -15,6 +15,7 @@
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
 
+#include <CGAL/assertions.h>
 #include <CGAL/tags.h>
 
 #include <Eigen/Cholesky>
@@ -161,13 +162,12 @@ private:
 /// Nearest neighbours of the rows `rows` (all when empty) of `query_embedding` among
 /// `data_embedding`; landmark rows are then forced to their targets.
 template <typename ConcurrencyTag>
-void zoomout_nearest(const Eigen::MatrixXd& query_embedding, const Eigen::MatrixXd& data_embedding,
+void zoomout_nearest(const Eigen::MatrixXd& query_embedding, const Nearest_neighbor_search& search,
                      const Zoomout_fitter& fitter, const std::vector<std::pair<int, int> >& landmarks,
                      std::vector<int>& map_rows)
 {
   const std::size_t m = fitter.number_of_rows();
   map_rows.resize(m);
-  Nearest_neighbor_search search(data_embedding);
   if(m == std::size_t(query_embedding.rows()))
     search.query<ConcurrencyTag>(query_embedding, map_rows.data());
   else
@@ -183,6 +183,16 @@ void zoomout_nearest(const Eigen::MatrixXd& query_embedding, const Eigen::Matrix
       for(const auto& l : landmarks)
         if(fitter.row_vertex(r) == l.first) map_rows[r] = l.second;
   }
+}
+
+/// The same among the rows of `data_embedding`.
+template <typename ConcurrencyTag>
+void zoomout_nearest(const Eigen::MatrixXd& query_embedding, const Eigen::MatrixXd& data_embedding,
+                     const Zoomout_fitter& fitter, const std::vector<std::pair<int, int> >& landmarks,
+                     std::vector<int>& map_rows)
+{
+  zoomout_nearest<ConcurrencyTag>(query_embedding, Nearest_neighbor_search(data_embedding), fitter, landmarks,
+                                  map_rows);
 }
 
 /// One-direction ZoomOut on unit-area bases (n x K, K >= final size): from the k0 x k0 map
@@ -225,6 +235,14 @@ Eigen::MatrixXd zoomout_refine(const Eigen::MatrixXd& source_basis, const Eigen:
 /// favours maps that the current 2 -> 1 map inverts, and symmetrically; both functional maps are
 /// then refitted one size up. `C12` (k1 x k2) and `C21` (k2 x k1) are replaced by the final maps.
 /// Features (F_1 for mesh 1, F_2 for mesh 2) are appended to both embeddings.
+///
+/// The search does not form the joint embeddings: the inner product of a query [Phi_1(x) C_12,
+/// a Phi_1(x)] with a data point [Phi_2(y), a Phi_2(y) C_21] is Phi_1(x) (C_12 + a^2 C_21^T)
+/// Phi_2(y)^T, so the nearest y is found among the rows Phi_2(y) (k2 coordinates instead of
+/// k2 + k1) for the query Phi_1(x) (C_12 + a^2 C_21^T), with the data norms |Phi_2(y)|^2 +
+/// a^2 |Phi_2(y) C_21|^2 (Nearest_neighbor_search::build() with extra norms). This halves the
+/// products that dominate the cost; the maps are those of the joint embeddings up to the
+/// rounding of near ties.
 template <typename ConcurrencyTag>
 void coupled_zoomout_refine(const Eigen::MatrixXd& basis1, const Eigen::VectorXd& mass1,
                             const Eigen::MatrixXd& basis2, const Eigen::VectorXd& mass2,
@@ -241,37 +259,37 @@ void coupled_zoomout_refine(const Eigen::MatrixXd& basis1, const Eigen::VectorXd
   const Zoomout_fitter fitter2(basis2, mass2, rows2, landmarks21, settings.landmark_weight);
   const Zoomout_fitter full1(basis1, mass1, std::vector<int>(), landmarks, settings.landmark_weight);
   const Zoomout_fitter full2(basis2, mass2, std::vector<int>(), landmarks21, settings.landmark_weight);
-  const double a = std::sqrt(std::max(0.0, settings.bijectivity_weight));
+  const double a2 = std::max(0.0, settings.bijectivity_weight);
   std::vector<int> rows_map12, rows_map21;
-  // [left, a right]: the query side of mesh 1 is [Phi_1 C_12, a Phi_1], its data side
-  // [Phi_1, a Phi_1 C_12] (and the same for mesh 2).
-  auto join = [a](const Eigen::MatrixXd& left, const Eigen::MatrixXd& right) {
-    Eigen::MatrixXd e(left.rows(), left.cols() + right.cols());
-    e.leftCols(left.cols()) = left;
-    e.rightCols(right.cols()) = a * right;
-    return e;
-  };
   for(std::size_t s = 0;; ++s)
   {
     const bool last = s + 1 == sizes.size();
     const double f = features.empty() ? 0.0 : zoomout_feature_scale(settings, s, sizes.size());
-    const Eigen::Index k = C12.rows();
-    // Each product once per step, the two concurrently (they dominate the cost with large bases).
-    Eigen::MatrixXd mapped1, mapped2;
-    invoke_both<ConcurrencyTag>([&] { mapped1.noalias() = basis1.leftCols(k) * C12; },
-                                [&] { mapped2.noalias() = basis2.leftCols(k) * C21; });
-    const Eigen::MatrixXd q1 = append_features(join(mapped1, basis1.leftCols(k)), features.source, f);
-    const Eigen::MatrixXd d2 = append_features(join(basis2.leftCols(k), mapped2), features.target, f);
-    const Eigen::MatrixXd q2 = append_features(join(mapped2, basis2.leftCols(k)), features.target, f);
-    const Eigen::MatrixXd d1 = append_features(join(basis1.leftCols(k), mapped1), features.source, f);
+    // Per mesh, the query Phi (C + a^2 C'^T) and the data norms of the joint embedding's
+    // bijectivity part, a^2 |Phi C|^2, for both meshes concurrently.
+    Eigen::MatrixXd q1, q2;
+    Nearest_neighbor_search search1, search2;
+    auto prepare = [a2, f](const Eigen::MatrixXd& basis, const Eigen::MatrixXd& C, const Eigen::MatrixXd& C_back,
+                           const Eigen::MatrixXd* own_features, Eigen::MatrixXd& query,
+                           Nearest_neighbor_search& search) {
+      const Eigen::Index k = C.rows();
+      const Eigen::MatrixXd combined = C + a2 * C_back.transpose();
+      query = append_features(basis.leftCols(k) * combined, own_features, f);
+      // The data side of this mesh (queried by the other one): [Phi, f F] with the norms of a Phi C.
+      const Eigen::VectorXd extra = a2 * (basis.leftCols(k) * C).rowwise().squaredNorm();
+      search.build(append_features(basis.leftCols(k), own_features, f), extra);
+    };
+    invoke_both<ConcurrencyTag>([&] { prepare(basis1, C12, C21, features.source, q1, search1); },
+                                [&] { prepare(basis2, C21, C12, features.target, q2, search2); });
+    CGAL_assertion(q1.cols() == search2.dimension() && q2.cols() == search1.dimension());
     if(last)
     {
-      zoomout_nearest<ConcurrencyTag>(q1, d2, full1, landmarks, map12);
-      zoomout_nearest<ConcurrencyTag>(q2, d1, full2, landmarks21, map21);
+      zoomout_nearest<ConcurrencyTag>(q1, search2, full1, landmarks, map12);
+      zoomout_nearest<ConcurrencyTag>(q2, search1, full2, landmarks21, map21);
       return;
     }
-    zoomout_nearest<ConcurrencyTag>(q1, d2, fitter1, landmarks, rows_map12);
-    zoomout_nearest<ConcurrencyTag>(q2, d1, fitter2, landmarks21, rows_map21);
+    zoomout_nearest<ConcurrencyTag>(q1, search2, fitter1, landmarks, rows_map12);
+    zoomout_nearest<ConcurrencyTag>(q2, search1, fitter2, landmarks21, rows_map21);
     invoke_both<ConcurrencyTag>([&] { C12 = fitter1.fit(rows_map12, basis2, sizes[s + 1], sizes[s + 1]); },
                                 [&] { C21 = fitter2.fit(rows_map21, basis1, sizes[s + 1], sizes[s + 1]); });
   }

@@ -13,6 +13,8 @@
 
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 
+#include <CGAL/assertions.h>
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -50,6 +52,24 @@ public:
   {
     points_ = data.transpose().template cast<float>();
     half_norms_ = 0.5f * points_.colwise().squaredNorm().transpose();
+    extra_squared_norms_.resize(0);
+  }
+
+  /// Indexes points y_j = [data_j, e_j] of a larger space whose coordinates beyond the rows of
+  /// `data` (n x d) are known only by their squared norms |e_j|^2 = `extra_squared_norms[j]`.
+  /// Queries are given by their inner products with the data part alone: a query row q finds the
+  /// j minimising |y_j|^2 / 2 - <q, data_j>, which is the nearest y_j to any point whose inner
+  /// product with every y_j is <q, data_j> (for one, [q, 0]); the squared distances reported are
+  /// those to [q, 0]. Used by the coupled ZoomOut, whose joint embeddings reduce to half their
+  /// dimension this way.
+  template <typename Derived>
+  void build(const Eigen::MatrixBase<Derived>& data, const Eigen::VectorXd& extra_squared_norms)
+  {
+    CGAL_precondition(extra_squared_norms.size() == data.rows());
+    points_ = data.transpose().template cast<float>();
+    extra_squared_norms_ = extra_squared_norms;
+    half_norms_ = (0.5 * (points_.template cast<double>().colwise().squaredNorm().transpose() + extra_squared_norms))
+                      .template cast<float>();
   }
 
   Eigen::Index size() const { return points_.cols(); }
@@ -89,6 +109,7 @@ public:
             const double diff = double(queries(begin + r, c)) - double(points_(c, best_j));
             d2 += diff * diff;
           }
+          if(extra_squared_norms_.size() > 0) d2 += extra_squared_norms_[best_j];
           squared_distances[begin + r] = d2;
         }
       }
@@ -98,6 +119,7 @@ public:
 private:
   Matrixf points_;      // d x n, one data point per column
   Eigen::VectorXf half_norms_;  // |y_j|^2 / 2
+  Eigen::VectorXd extra_squared_norms_;  // |e_j|^2 of the coordinates beyond points_, or empty
 };
 
 /// Convenience: nearest row of `data` for every row of `queries`.
