@@ -155,13 +155,13 @@ public:
     const float* r = row(k);
     for(std::size_t i = 0; i < count; ++i) out[i] = r[l[i]];
   }
-  /// Row k of the matrix (n floats).
   /// out[1 + p] = distance(k, set[p]) for p < size (the interface of
   /// Local_distance_oracle::distances_to_set(); `slot` is not needed here).
   void distances_to_set(int k, const int* /*slot*/, const int* set, std::size_t size, float* out) const
   {
     distances(k, set, size, out + 1);
   }
+  /// Row k of the matrix (n floats).
   const float* row(int k) const { return d_.data() + static_cast<std::size_t>(k) * n_; }
   std::size_t memory_bytes() const { return d_.size() * sizeof(float); }
 
