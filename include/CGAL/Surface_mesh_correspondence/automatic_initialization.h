@@ -500,21 +500,22 @@ inline Eigen::MatrixXd landmark_wave_kernel_maps(const Eigen::MatrixXd& basis, c
   const double lo = std::log(values[std::min<Eigen::Index>(first, k - 1)]), hi = std::log(values[k - 1]);
   const double delta = energies > 1 ? (hi - lo) / (energies - 1) : (hi - lo);
   const double sigma = 7.0 * delta;
-  Eigen::MatrixXd out(basis.rows(), Eigen::Index(points.size()) * energies);
-  for(std::size_t l = 0; l < points.size(); ++l)
-    for(int e = 0; e < energies; ++e)
+  // Column (l, e) of the result is basis * (g_e .* phi(p_l)): one matrix product for all of them.
+  Eigen::MatrixXd spectral(k, Eigen::Index(points.size()) * energies);
+  for(int e = 0; e < energies; ++e)
+  {
+    const double energy = energies > 1 ? lo + e * delta : 0.5 * (lo + hi);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(k);
+    for(Eigen::Index j = first; j < k; ++j)
     {
-      const double energy = energies > 1 ? lo + e * delta : 0.5 * (lo + hi);
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(k);
-      for(Eigen::Index j = first; j < k; ++j)
-      {
-        const double d = energy - std::log(values[j]);
-        g[j] = std::exp(-d * d / (2 * sigma * sigma));
-      }
-      g /= std::max(g.sum(), 1e-300);
-      out.col(Eigen::Index(l) * energies + e) = basis * g.cwiseProduct(basis.row(points[l]).transpose());
+      const double d = energy - std::log(values[j]);
+      g[j] = std::exp(-d * d / (2 * sigma * sigma));
     }
-  return out;
+    g /= std::max(g.sum(), 1e-300);
+    for(std::size_t l = 0; l < points.size(); ++l)
+      spectral.col(Eigen::Index(l) * energies + e) = g.cwiseProduct(basis.row(points[l]).transpose());
+  }
+  return basis * spectral;
 }
 
 /// The reduced terms of one shape at basis size k: descriptor coefficients and, for the columns
@@ -1022,8 +1023,10 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
       p1.push_back(l.first);
       p2.push_back(l.second);
     }
-    Eigen::MatrixXd L1 = landmark_wave_kernel_maps(basis1, values1, p1, s.number_of_landmark_energies);
-    Eigen::MatrixXd L2 = landmark_wave_kernel_maps(basis2, values2, p2, s.number_of_landmark_energies);
+    Eigen::MatrixXd L1, L2;
+    invoke_both<ConcurrencyTag>(
+        [&] { L1 = landmark_wave_kernel_maps(basis1, values1, p1, s.number_of_landmark_energies); },
+        [&] { L2 = landmark_wave_kernel_maps(basis2, values2, p2, s.number_of_landmark_energies); });
     normalise(L1, mass1);
     normalise(L2, mass2);
     const Eigen::Index d = D1.cols(), dl = L1.cols();
