@@ -38,6 +38,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -1138,7 +1139,18 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
       c.score21 = score(F2, D1, rows2, t21);
     }
   };
-  auto run_candidate = [&](Candidate& c) {
+  // The fits, one task per candidate and direction, the largest bases first: a fit's cost grows
+  // steeply with k0 (k0 = 60 is solved iteratively), so this keeps the threads busy to the end.
+  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd> > fitted(candidates.size());
+  std::vector<std::size_t> fit_order(2 * candidates.size());
+  std::iota(fit_order.begin(), fit_order.end(), std::size_t(0));
+  std::stable_sort(fit_order.begin(), fit_order.end(), [&](std::size_t x, std::size_t y) {
+    return candidates[x / 2].config.basis_size > candidates[y / 2].config.basis_size;
+  });
+  parallel_for_in_order<ConcurrencyTag>(fit_order.size(), [&](std::size_t t) {
+    const std::size_t i = fit_order[t] / 2;
+    const bool forward = fit_order[t] % 2 == 0;
+    const Candidate& c = candidates[i];
     Functional_map_shape_terms a = leading_terms(T1, c.config.basis_size);
     Functional_map_shape_terms b = leading_terms(T2, c.config.basis_size);
     normalize_operator_pairs(a, b);
@@ -1151,16 +1163,13 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
       // The mirror hypothesis: the signed descriptors of mesh 2 change sign.
       b.descriptor_coefficients.middleCols(signed_begin, signed_count) *= -1.0;
     }
-    Eigen::MatrixXd C12 = minimize_functional_map_energy(a, b, w, column_weights);
-    Eigen::MatrixXd C21 = minimize_functional_map_energy(b, a, w, column_weights);
-    if(s.procrustes)
-    {
-      C12 = nearest_orthogonal(C12);
-      C21 = nearest_orthogonal(C21);
-    }
-    zoom_and_score(c, C12, C21);
-  };
-  parallel_for<ConcurrencyTag>(candidates.size(), [&](std::size_t i) { run_candidate(candidates[i]); });
+    Eigen::MatrixXd C = forward ? minimize_functional_map_energy(a, b, w, column_weights)
+                                : minimize_functional_map_energy(b, a, w, column_weights);
+    if(s.procrustes) C = nearest_orthogonal(C);
+    (forward ? fitted[i].first : fitted[i].second) = std::move(C);
+  });
+  parallel_for<ConcurrencyTag>(candidates.size(),
+                               [&](std::size_t i) { zoom_and_score(candidates[i], fitted[i].first, fitted[i].second); });
   if(s.select_by_distortion)
   {
     // The inverses of the fitted maps (C_21^T for 1 -> 2 and C_12^T for 2 -> 1, the maps being

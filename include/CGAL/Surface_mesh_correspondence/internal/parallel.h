@@ -10,6 +10,8 @@
 
 #include <CGAL/tags.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <type_traits>
 
@@ -17,6 +19,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 #endif
 
 namespace CGAL {
@@ -64,6 +67,29 @@ void parallel_for(std::size_t n, const Body& body, std::size_t grain = 1)
         for(std::size_t i = b; i < e; ++i) body(i);
       },
       grain);
+}
+
+/// Calls `body(i)` for every i in [0, n), concurrently with Parallel_tag, starting the calls in
+/// the order of i: each thread takes the next index when it is free. For a few tasks of very
+/// different costs listed from the most to the least costly (the longest-processing-time-first
+/// schedule); parallel_for() splits the range in halves instead, which can leave the costliest
+/// tasks to one thread.
+template <typename ConcurrencyTag, typename Body>
+void parallel_for_in_order(std::size_t n, const Body& body)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if(Is_parallel<ConcurrencyTag>::value && n > 1)
+  {
+    std::atomic<std::size_t> next(0);
+    const std::size_t workers =
+        std::min(n, static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency())));
+    tbb::parallel_for(std::size_t(0), workers, [&](std::size_t) {
+      for(std::size_t i = next++; i < n; i = next++) body(i);
+    });
+    return;
+  }
+#endif
+  for(std::size_t i = 0; i < n; ++i) body(i);
 }
 
 /// Runs a and b, concurrently with Parallel_tag.
