@@ -66,23 +66,13 @@ int main(int argc, char** argv)
 
     // 3. Coupled refinement on the same shapes.
     Print_steps visitor;
+    // The preset for automatic maps: they are consistent by construction and within a few rings
+    // of their refined positions, so the refinement uses a lighter cycle term, a short ring
+    // schedule searched with more candidates and fewer TRW-S iterations, and returns its most
+    // consistent refined iterate (see Refinement_preset; explicit parameters override it).
     const smc::Coupled_refinement_result r = smc::refine_coupled_maps(
         s1, s2, x12, x21,
-        // What `comap` does with automatic maps: they are consistent by construction, so a lighter
-        // cycle term (0.5 instead of 1) lets the refinement move them further, and the most
-        // consistent refined iterate is returned (not the input maps, as the paper's rule would);
-        // the paper's early stop of Eq. (4) ends the refinement at the first iterate that is less
-        // consistent. They lie within a few rings of their refined positions, so a short ring
-        // schedule suffices, searched with twice the paper's candidates; their MRF solves start
-        // near the optimum, so 15 TRW-S iterations reach it.
-        smc::parameters::consistency_weight(
-            0.5, smc::parameters::keep_consistent_input_maps(
-                     false, smc::parameters::stop_when_consistency_worsens(
-                                true, smc::parameters::ring_schedule(
-                                          std::vector<int>{4, 3, 2, 1},
-                                          smc::parameters::number_of_candidates(
-                                              40, smc::parameters::trws_number_of_iterations(15))))))
-            .visitor(std::ref(visitor)));
+        smc::parameters::refinement_preset(smc::Refinement_preset::automatic_maps).visitor(std::ref(visitor)));
     std::cerr << "refinement: " << r.inconsistent_vertices_before << " -> " << r.inconsistent_vertices_after
               << " inconsistent vertices in " << r.total_seconds << " s\n";
 

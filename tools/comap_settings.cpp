@@ -61,16 +61,17 @@ std::vector<smc::internal::Fit_candidate> parse_fits(const std::string& option, 
 void add_algorithm_options(Option_parser& p, Settings& s, bool with_initialization)
 {
   const Settings d;  // the library's defaults
+  const smc::Refinement_settings automatic = smc::Refinement_settings::preset(smc::Refinement_preset::automatic_maps);
   smc::Refinement_settings& r = s.refinement;
   p.section("Coupled refinement (Algorithm 1)");
   p.value("--candidates", "M", "candidate target vertices per source vertex, m (without --candidates: " +
-          std::to_string(d.automatic_number_of_candidates) + " for automatic initial maps)",
+          std::to_string(automatic.number_of_candidates) + " for automatic initial maps)",
           std::to_string(d.refinement.number_of_candidates), [&r, &s](const std::string& v) {
             r.number_of_candidates = parse_int("--candidates", v, 1, 100000);
             s.number_of_candidates_given = true;
           });
   p.value("--rings", "R1,R2,...", "ring schedule: radius (in rings) of the candidate neighbourhoods at each outer "
-          "iteration; the last one repeats (without --rings: " + join(d.automatic_ring_schedule) +
+          "iteration; the last one repeats (without --rings: " + join(automatic.ring_schedule) +
           " for automatic initial maps)",
           join(d.refinement.ring_schedule),
           [&r, &s](const std::string& v) {
@@ -81,7 +82,7 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           shortest(d.refinement.unary_weight), [&r](const std::string& v) { r.unary_weight = parse_double("--mu", v); });
   p.value("--consistency-weight", "X", "weight of the cycle term: a candidate k of source vertex i costs X times the "
           "geodesic distance (relative to sqrt(area)) from i to the opposite map's match of k (0: the paper's energy; "
-          "without --consistency-weight: " + shortest(d.automatic_consistency_weight) + " for automatic initial maps)",
+          "without --consistency-weight: " + shortest(automatic.consistency_weight) + " for automatic initial maps)",
           shortest(d.refinement.consistency_weight),
           [&r, &s](const std::string& v) {
             r.consistency_weight = parse_double("--consistency-weight", v);
@@ -113,7 +114,7 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
             s.keep_consistent_input_maps = parse_automatic_switch("--keep-input", v, "off", "on");
           });
   p.value("--trws-iterations", "N", "TRW-S iterations per MRF solve (without --trws-iterations: " +
-          std::to_string(d.automatic_trws_number_of_iterations) + " for automatic initial maps)",
+          std::to_string(automatic.trws_number_of_iterations) + " for automatic initial maps)",
           std::to_string(d.refinement.trws_number_of_iterations), [&r, &s](const std::string& v) {
             r.trws_number_of_iterations = parse_int("--trws-iterations", v, 1, 1000000);
             s.trws_number_of_iterations_given = true;
@@ -272,15 +273,15 @@ void check_settings(const Settings& s, bool with_initialization)
 
 smc::Refinement_settings resolved_refinement(const Settings& settings, bool automatic_input)
 {
+  const smc::Refinement_settings preset = smc::Refinement_settings::preset(
+      automatic_input ? smc::Refinement_preset::automatic_maps : smc::Refinement_preset::given_maps);
   smc::Refinement_settings r = settings.refinement;
-  r.keep_consistent_input_maps = resolve_switch(settings.keep_consistent_input_maps, !automatic_input);
-  r.stop_when_consistency_worsens = resolve_switch(settings.stop_rule, automatic_input);
-  if(automatic_input && !settings.ring_schedule_given) r.ring_schedule = settings.automatic_ring_schedule;
-  if(automatic_input && !settings.consistency_weight_given) r.consistency_weight = settings.automatic_consistency_weight;
-  if(automatic_input && !settings.number_of_candidates_given)
-    r.number_of_candidates = settings.automatic_number_of_candidates;
-  if(automatic_input && !settings.trws_number_of_iterations_given)
-    r.trws_number_of_iterations = settings.automatic_trws_number_of_iterations;
+  r.keep_consistent_input_maps = resolve_switch(settings.keep_consistent_input_maps, preset.keep_consistent_input_maps);
+  r.stop_when_consistency_worsens = resolve_switch(settings.stop_rule, preset.stop_when_consistency_worsens);
+  if(!settings.ring_schedule_given) r.ring_schedule = preset.ring_schedule;
+  if(!settings.consistency_weight_given) r.consistency_weight = preset.consistency_weight;
+  if(!settings.number_of_candidates_given) r.number_of_candidates = preset.number_of_candidates;
+  if(!settings.trws_number_of_iterations_given) r.trws_number_of_iterations = preset.trws_number_of_iterations;
   return r;
 }
 

@@ -24,48 +24,31 @@ struct Settings
   smc::internal::Shape_settings shape;                 ///< spectrum, descriptor stack, distance oracle
   smc::Refinement_settings refinement;                  ///< Algorithm 1
   smc::internal::Initialization_settings initialization; ///< automatic initial maps
-  /// Refinement_settings::keep_consistent_input_maps: 1 on (the paper's rule), 0 off, -1
-  /// automatic (the default: on for given initial maps, off for automatic ones). Automatic maps
-  /// are refined with a lighter cycle term (automatic_consistency_weight) whose first iterate is
-  /// often a little less consistent than they are but more accurate; the paper's rule would
-  /// return them unchanged (TOSCA_r, every 8th pair: 0.0232 refined against 0.0260 kept).
+  /// The refinement's defaults depend on the initial maps: smc::Refinement_preset::given_maps
+  /// for maps read from files, smc::Refinement_preset::automatic_maps for automatic ones (see
+  /// resolved_refinement()). The switches below are -1 (automatic: the preset's choice) unless
+  /// their option was given; the flags record which of the other options that differ between the
+  /// presets were given (those apply to every kind of maps).
+  /// Refinement_settings::keep_consistent_input_maps: 1 on (the paper's rule), 0 off, -1 automatic.
   int keep_consistent_input_maps = -1;
   /// Refinement_settings::stop_when_consistency_worsens: 1 consistency (the paper's Eq. (4) early
-  /// stop), 0 none (run the whole ring schedule), -1 automatic (the default): the early stop for
-  /// automatic initial maps (with the cycle term their iterates grow more consistent, so it only
-  /// ends a schedule that stops helping); the whole schedule for given maps, where later iterates
-  /// become the most consistent (TOSCA_r WKS maps: 0.0454 against 0.0460).
+  /// stop), 0 none (run the whole ring schedule), -1 automatic. On given maps the whole schedule
+  /// is better: their later iterates become the most consistent (TOSCA_r WKS maps: 0.0454 against
+  /// 0.0460).
   int stop_rule = -1;
-  /// The refinement of automatic initial maps when --rings, --candidates and --trws-iterations
-  /// are not given: they lie within a few rings of their refined positions, so a short schedule
-  /// suffices, and with twice the paper's candidates it searches those rings more finely. All 284
-  /// TOSCA_r pairs, refinement of the same automatic maps: 40 candidates, rings 4, 3, 2, 1 give
-  /// 0.0248 (15 TRW-S iterations per solve, the same as 100), 20 candidates, rings 3, 2, 1 0.0257;
-  /// with m = 20 the wider rings are worse (0.0240 against 0.0237 on every 4th pair). The solves
-  /// of these maps start near their optimum: 15 iterations reach it (TOSCA_r, every 4th pair,
-  /// 0.0227 with 15 and with up to 100) in half the time.
-  std::vector<int> automatic_ring_schedule{4, 3, 2, 1};
-  bool ring_schedule_given = false;  ///< --rings was given: it applies to every kind of maps
-  int automatic_number_of_candidates = 40;  ///< see automatic_ring_schedule
-  bool number_of_candidates_given = false;  ///< --candidates was given
-  int automatic_trws_number_of_iterations = 15;  ///< see automatic_ring_schedule
+  bool ring_schedule_given = false;              ///< --rings was given
+  bool number_of_candidates_given = false;       ///< --candidates was given
   bool trws_number_of_iterations_given = false;  ///< --trws-iterations was given
-  /// The cycle term's weight for automatic initial maps when --consistency-weight is not given:
-  /// they are consistent already, and a lighter cycle term lets the refinement move them further
-  /// (TOSCA_r, every 8th pair, schedule 3, 2, 1: 0.0232 against 0.0239 with 1, cycle error 0.0065
-  /// against 0.0041). Given maps keep Refinement_settings::consistency_weight (1): from the
-  /// WKS maps the cycle term is what removes their inconsistencies.
-  double automatic_consistency_weight = 0.5;
-  bool consistency_weight_given = false;  ///< --consistency-weight was given
+  bool consistency_weight_given = false;         ///< --consistency-weight was given
 };
 
-/// The value of an automatic switch of Settings (1 on, 0 off, -1 automatic) for initial maps that
-/// are automatic or given: `when_automatic` when the switch is automatic.
-inline bool resolve_switch(int choice, bool when_automatic) { return choice < 0 ? when_automatic : choice == 1; }
+/// The value of an automatic switch of Settings (1 on, 0 off, -1 automatic): `preset_value` when
+/// the switch is automatic.
+inline bool resolve_switch(int choice, bool preset_value) { return choice < 0 ? preset_value : choice == 1; }
 
-/// The refinement settings with the automatic choices (keep-input, stop rule, ring schedule,
-/// candidates, TRW-S iterations, cycle term weight)
-/// resolved for initial maps that are automatic or given.
+/// The refinement settings for initial maps that are automatic or given: the options given, and
+/// the values of the matching smc::Refinement_preset for the options of Settings that were not
+/// (keep-input, stop rule, ring schedule, candidates, TRW-S iterations, cycle term weight).
 smc::Refinement_settings resolved_refinement(const Settings& settings, bool automatic_input);
 
 /// Registers the options of every algorithm parameter (refinement, shape preparation and, when

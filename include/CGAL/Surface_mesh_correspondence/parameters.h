@@ -73,6 +73,7 @@ namespace Surface_mesh_correspondence {
   X(pairwise_rings_t, pairwise_rings, pairwise_rings)                                    \
   X(stop_when_consistency_worsens_t, stop_when_consistency_worsens, stop_when_consistency_worsens) \
   X(keep_consistent_input_maps_t, keep_consistent_input_maps, keep_consistent_input_maps) \
+  X(refinement_preset_t, refinement_preset, refinement_preset)                        \
   /* automatic initialisation */                                                         \
   X(spectral_basis_size_t, spectral_basis_size, spectral_basis_size)                     \
   X(zoomout_final_size_t, zoomout_final_size, zoomout_final_size)                        \
