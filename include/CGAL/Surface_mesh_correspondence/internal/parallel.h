@@ -73,7 +73,9 @@ void parallel_for(std::size_t n, const Body& body, std::size_t grain = 1)
 /// the order of i: each thread takes the next index when it is free. For a few tasks of very
 /// different costs listed from the most to the least costly (the longest-processing-time-first
 /// schedule); parallel_for() splits the range in halves instead, which can leave the costliest
-/// tasks to one thread.
+/// tasks to one thread. Each call is isolated: a thread waiting inside a body's own parallel work
+/// does not take other indices meanwhile. When a body throws, no further index is started and the
+/// exception reaches the caller.
 template <typename ConcurrencyTag, typename Body>
 void parallel_for_in_order(std::size_t n, const Body& body)
 {
@@ -84,10 +86,20 @@ void parallel_for_in_order(std::size_t n, const Body& body)
     const std::size_t workers =
         std::min(n, static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency())));
     tbb::parallel_for(std::size_t(0), workers, [&](std::size_t) {
-      for(std::size_t i = next++; i < n; i = next++) body(i);
+      try
+      {
+        for(std::size_t i = next++; i < n; i = next++) tbb::this_task_arena::isolate([&] { body(i); });
+      }
+      catch(...)
+      {
+        next = n;
+        throw;
+      }
     });
     return;
   }
+#else
+  (void)Is_parallel<ConcurrencyTag>::value;
 #endif
   for(std::size_t i = 0; i < n; ++i) body(i);
 }
@@ -102,6 +114,8 @@ void invoke_both(const A& a, const B& b)
     tbb::parallel_invoke(a, b);
     return;
   }
+#else
+  (void)Is_parallel<ConcurrencyTag>::value;
 #endif
   a();
   b();
