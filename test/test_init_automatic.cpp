@@ -674,6 +674,47 @@ BOOST_AUTO_TEST_CASE(distortion_repair_restores_swapped_limbs)
                     smc::Invalid_parameter_error);
 }
 
+BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted_pair)
+{
+  // Given maps with swapped arms, not repaired (no repair pass): the automatic maps of the pair
+  // distort the sample distances less and replace them; they are exactly the maps of
+  // automatic_initial_maps() with the same parameters.
+  const Pair_fixture& f = symmetric();
+  const Swapped_arms s = swapped_arms(f);
+  std::vector<std::size_t> c12 = s.map_12, c21 = s.map_21, a12, a21;
+  const smc::Automatic_initialization_result c = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, c12, c21, params::compare_with_automatic_maps(true, params::number_of_repair_passes(0)));
+  smc::automatic_initial_maps(f.pair.m1, f.pair.m2, a12, a21, params::number_of_repair_passes(0));
+  BOOST_TEST_MESSAGE("swapped arms against the automatic maps: sample distortion " << c.given_maps_distortion
+                                                                                  << " against "
+                                                                                  << c.automatic_maps_distortion);
+  BOOST_TEST(c.compared_with_automatic_maps);
+  BOOST_TEST(c.automatic_maps_kept);
+  BOOST_TEST(c.automatic_maps_distortion < c.given_maps_distortion);
+  BOOST_TEST(c12 == a12);
+  BOOST_TEST(c21 == a21);
+  BOOST_TEST(f.error_12(c12, f.pair.gt_12) < 0.015);
+  BOOST_TEST(c.final_basis_size == 200);
+  // The true maps against coarse automatic maps (basis 4): the true maps are less distorted and
+  // come back unchanged.
+  std::vector<std::size_t> t12 = f.pair.gt_12, t21 = f.pair.gt_21;
+  const smc::Automatic_initialization_result t = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, t12, t21,
+      params::compare_with_automatic_maps(
+          true, params::spectral_basis_size(3, params::zoomout_final_size(4, params::zoomout_pass_size(4)))));
+  BOOST_TEST_MESSAGE("true maps against coarse automatic maps: sample distortion " << t.given_maps_distortion
+                                                                                  << " against "
+                                                                                  << t.automatic_maps_distortion);
+  BOOST_TEST(t.compared_with_automatic_maps);
+  BOOST_TEST(!t.automatic_maps_kept);
+  BOOST_TEST(t.given_maps_distortion < t.automatic_maps_distortion);
+  BOOST_TEST(t12 == f.pair.gt_12);
+  BOOST_TEST(t21 == f.pair.gt_21);
+  // Without the parameter nothing is compared.
+  std::vector<std::size_t> n12 = f.pair.gt_12, n21 = f.pair.gt_21;
+  BOOST_TEST(!smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21).compared_with_automatic_maps);
+}
+
 BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)
 {
   // Landmarks that say "the mirror map": the answer must follow them on the symmetric shape.

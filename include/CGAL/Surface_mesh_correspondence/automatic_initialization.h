@@ -90,6 +90,13 @@ struct Automatic_initialization_result
   /// and of the kept pass's maps (before their growth to the final basis size).
   int distortion_repair_passes = 0;
   double sample_distortion_before = 0, sample_distortion = 0;
+  /// Comparison with the automatic maps (repair_torn_maps() with `compare_with_automatic_maps`):
+  /// whether it ran, whether the automatic maps replaced the (repaired) given maps, and the
+  /// geodesic distortions of the sample maps (mean of both directions) of both pairs of maps at
+  /// the final basis size. When the automatic maps are kept, every other field describes them.
+  bool compared_with_automatic_maps = false;
+  bool automatic_maps_kept = false;
+  double given_maps_distortion = 0, automatic_maps_distortion = 0;
   /// Passes run in all (fits and ZoomOut: the first one and the repair passes, kept or not).
   int passes = 0;
   /// Spectra taken from the prepared shapes (0, 1 or 2) instead of computed (the overload on
@@ -214,6 +221,10 @@ struct Initialization_settings
   /// The fit configurations of the repair passes (the landmarks constrain the fits, so fewer are
   /// needed); empty: those of the first pass.
   std::vector<Fit_candidate> repair_candidates{{20, 0.03, 0.3}, {40, 0.1, 1.0}};
+  /// repair_given_maps() only: after the repairs, the given maps compete with the automatic maps
+  /// of the pair (automatic_initial_maps() run on the same shapes); the pair of maps whose sample
+  /// maps distort geodesic distances less is kept.
+  bool compare_with_automatic_maps = false;
   bool verbose = false;
 };
 
@@ -258,6 +269,8 @@ Initialization_settings initialization_settings(const NamedParameters& np)
       get_parameter(np, internal_np::tear_repair_distortion_tolerance), s.tear_repair_distortion_tolerance);
   s.distortion_repair_passes = choose_parameter(
       get_parameter(np, internal_np::number_of_distortion_repair_passes), s.distortion_repair_passes);
+  s.compare_with_automatic_maps = choose_parameter(get_parameter(np, internal_np::compare_with_automatic_maps),
+                                                   s.compare_with_automatic_maps);
   s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
   const auto& landmarks = get_parameter(np, internal_np::landmarks);
   if constexpr(!std::is_same<typename std::decay<decltype(landmarks)>::type,
@@ -1540,10 +1553,12 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
                                                        const Initialization_shape& shape2,
                                                        const Initialization_settings& s,
                                                        std::vector<std::size_t>& map_12,
-                                                       std::vector<std::size_t>& map_21)
+                                                       std::vector<std::size_t>& map_21,
+                                                       Initialization_pass_cache* pass_cache = nullptr)
 {
   const auto start = std::chrono::steady_clock::now();
-  Initialization_pass_cache cache;
+  Initialization_pass_cache own_cache;
+  Initialization_pass_cache& cache = pass_cache ? *pass_cache : own_cache;
   const Automatic_initialization_result first =
       single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, &cache);
   Automatic_initialization_result result =
@@ -1553,6 +1568,50 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
   grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+/// The comparison of repair_given_maps() (`compare_with_automatic_maps`): the automatic maps of
+/// the pair (automatic_initial_maps() on the same shapes, sharing `cache`) replace `map_12` and
+/// `map_21` when their sample maps distort geodesic distances less (pair_distortion(), mean of both
+/// directions; ties keep the given maps). Maps computed elsewhere can be globally wrong in a way no
+/// repair from their own cores undoes: a humanoid turned by 180 degrees about its vertical axis is
+/// continuous, keeps its orientation, and its isometric core is turned too. Returns `given`, or
+/// the automatic maps' result, with the comparison's fields and the times of both.
+template <typename ConcurrencyTag>
+Automatic_initialization_result compare_with_automatic_maps(const Initialization_shape& shape1,
+                                                            const Initialization_shape& shape2,
+                                                            const Initialization_settings& s,
+                                                            Initialization_pass_cache& cache,
+                                                            std::vector<std::size_t>& map_12,
+                                                            std::vector<std::size_t>& map_21,
+                                                            const Automatic_initialization_result& given)
+{
+  std::vector<std::size_t> a12, a21;
+  Automatic_initialization_result automatic =
+      automatic_initial_maps<ConcurrencyTag>(shape1, shape2, s, a12, a21, &cache);
+  prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, cache);
+  const double given_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21);
+  const double automatic_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, a12, a21);
+  const bool keep_automatic = automatic_distortion < given_distortion;
+  if(s.verbose)
+    std::cerr << "repair_torn_maps: sample distortion of the given maps " << given_distortion
+              << ", of the automatic maps " << automatic_distortion << ": "
+              << (keep_automatic ? "the automatic maps are kept" : "the given maps are kept") << "\n";
+  Automatic_initialization_result r = keep_automatic ? automatic : given;
+  if(keep_automatic)
+  {
+    map_12.swap(a12);
+    map_21.swap(a21);
+    r.spectra_seconds = given.spectra_seconds;
+  }
+  r.functional_map_seconds = given.functional_map_seconds + automatic.functional_map_seconds;
+  r.zoomout_seconds = given.zoomout_seconds + automatic.zoomout_seconds;
+  r.passes = given.passes + automatic.passes;
+  r.compared_with_automatic_maps = true;
+  r.automatic_maps_kept = keep_automatic;
+  r.given_maps_distortion = given_distortion;
+  r.automatic_maps_distortion = automatic_distortion;
+  return r;
 }
 
 /// repair_torn_maps() and repair_distorted_maps() for maps computed elsewhere: their orientation
@@ -1578,6 +1637,8 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
     r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
   // Maps of a kept repair pass grow to the final size (the given maps have no functional maps).
   grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+  if(s.compare_with_automatic_maps)
+    r = compare_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -1735,6 +1796,8 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///   - `number_of_distortion_repair_passes`: distortion repair passes at most (maps continuous but
 ///     wrong on a large part, e.g. half-body flips; see repair_distorted_maps()); type `int`;
 ///     default 0 (each pass costs about as much as the first one).
+///   - `compare_with_automatic_maps`: repair_torn_maps() only (ignored here): whether the repaired
+///     given maps compete with the automatic maps; type `bool`; default false.
 ///   - `verbose`: print progress to `std::cerr`; type `bool`; default false.
 ///   - `vertex_point_map`, `vertex_index_map`: for both meshes (use the same types); defaults the
 ///     meshes' own.
@@ -1798,12 +1861,17 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 /// are returned unchanged. With `number_of_distortion_repair_passes`, the distortion repair
 /// follows (see repair_distorted_maps(): maps whose sample distortion is above 0.035 are
 /// recomputed from landmarks in their isometric core, and kept when at least 20% less distorted).
+/// With `compare_with_automatic_maps(true)` the (repaired) maps then compete with the automatic
+/// maps of the pair (automatic_initial_maps(), about the time of one more initialisation): the
+/// pair of maps whose farthest-point samples' geodesic distances are less distorted is returned.
+/// This catches given maps that are wrong as a whole, which their own cores cannot repair.
 ///
 /// \param map_12, map_21 input and output: `map_12[i]` is the vertex of `tm2` matched to vertex i of
 ///   `tm1` (indices of the vertex index maps), `map_21` the other way round
 /// \param np the named parameters of automatic_initial_maps(); `landmarks` are kept in every pass
 /// \returns `repair_passes` (0: the maps were kept), the torn fractions before and after,
-///   `distortion_repair_passes` and the sample distortions before and after, timings
+///   `distortion_repair_passes` and the sample distortions before and after, timings; with
+///   `compare_with_automatic_maps`, `automatic_maps_kept` and both distortions compared
 /// \throws Invalid_map_error for maps of the wrong size or with entries out of range, and the
 ///   exceptions of automatic_initial_maps()
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename TriangleMesh2,

@@ -88,7 +88,8 @@ namespace Surface_mesh_correspondence {
   X(tear_repair_distortion_tolerance_t, tear_repair_distortion_tolerance,                \
     tear_repair_distortion_tolerance)                                                    \
   X(number_of_distortion_repair_passes_t, number_of_distortion_repair_passes,            \
-    number_of_distortion_repair_passes)
+    number_of_distortion_repair_passes)                                                  \
+  X(compare_with_automatic_maps_t, compare_with_automatic_maps, compare_with_automatic_maps)
 
 namespace internal_np {
 #define CGAL_SMC_DECLARE_TAG(X, Y, Z) enum X { Y };
