@@ -126,6 +126,9 @@ int match(int argc, char** argv)
   p.flag("--repair", "given initial maps: when their tears cut off parts of a mesh (swapped limbs), recompute "
          "them with landmarks from their consistent core (automatic maps are always repaired, see "
          "--init-repair-passes)", [&] { repair = true; });
+  p.flag("--compare-automatic", "given initial maps: after the repair (implies --repair), compare them with the "
+         "automatic maps of the pair and keep the less distorted ones (the time of one more initialisation)",
+         [&] { repair = settings.initialization.compare_with_automatic_maps = true; });
   add_algorithm_options(p, settings, true);
   add_common_options(p, common);
   bool run = true;
@@ -182,20 +185,25 @@ int match(int argc, char** argv)
   }
   else if(repair)
   {
-    progress.line("repairing the tears of the initial maps");
+    progress.line(settings.initialization.compare_with_automatic_maps
+                      ? "repairing the tears of the initial maps, then comparing them with the automatic maps"
+                      : "repairing the tears of the initial maps");
     initialization = repair_maps(*s1, *s2, settings, map_12, map_21);
     progress.line("repair in " + duration(initialization.total_seconds) + ": " + initialization_summary(initialization));
   }
+  // Maps of the automatic initialisation that replaced the given ones (a kept repair pass, or the
+  // automatic maps of --compare-automatic) are refined as automatic maps.
+  const bool automatic_maps = automatic || (repair && repaired_maps_are_automatic(initialization));
   const std::size_t inconsistent_initial = smc::number_of_inconsistent_vertices(map_12, map_21);
   const double coverage_12_initial = smc::map_coverage(map_12, n2), coverage_21_initial = smc::map_coverage(map_21, n1);
   smc::Coupled_refinement_result refinement;
   if(refine)
   {
-    const smc::Refinement_settings resolved = resolved_refinement(settings, automatic);
+    const smc::Refinement_settings resolved = resolved_refinement(settings, automatic_maps);
     progress.line("coupled refinement: " + std::to_string(resolved.outer_iterations()) +
                   " outer iterations at most, rings " + join(resolved.ring_schedule) + ", " +
                   std::to_string(resolved.number_of_candidates) + " candidates");
-    refinement = refine_maps(*s1, *s2, map_12, map_21, settings, automatic, progress);
+    refinement = refine_maps(*s1, *s2, map_12, map_21, settings, automatic_maps, progress);
     progress.line("refinement done in " + duration(refinement.total_seconds) + " (" +
                   smc::to_string(refinement.termination) + ")");
   }
@@ -211,7 +219,7 @@ int match(int argc, char** argv)
     json.begin_object().value("command", "match").value("index_base", index_base);
     write_preparation(json, "source", *s1);
     write_preparation(json, "target", *s2);
-    write_settings(json, "settings", settings, initialization_data, automatic);
+    write_settings(json, "settings", settings, initialization_data, automatic_maps);
     if(automatic)
       write_initialization(json, "initialization", initialization);
     else

@@ -125,6 +125,8 @@ struct Pair_result
   double torn_fraction_before = 0, torn_fraction = 0;
   int distortion_repair_passes = 0;               ///< distortion repair passes kept
   double sample_distortion_before = 0, sample_distortion = 0;
+  int automatic_maps_kept = -1;                   ///< --compare-automatic: 1 when the automatic maps replaced the given ones
+  bool refined_as_automatic = false;              ///< automatic maps, or repaired maps of the automatic initialisation
   std::string termination;
   double preprocessing_seconds = 0, initialization_seconds = 0, data_preparation_seconds = 0, trws_seconds = 0,
          refinement_seconds = 0, evaluation_seconds = 0;
@@ -138,6 +140,7 @@ struct Pair_result
     distortion_repair_passes = init.distortion_repair_passes;
     sample_distortion_before = init.sample_distortion_before;
     sample_distortion = init.sample_distortion;
+    automatic_maps_kept = init.compared_with_automatic_maps ? int(init.automatic_maps_kept) : -1;
   }
 };
 
@@ -311,6 +314,9 @@ int run_bench(int argc, char** argv)
          [&] { o.no_refine = true; });
   p.flag("--repair", "with --init: repair the tears of the given maps before the refinement (see comap match "
          "--repair); the repaired maps go to OUT/repaired_maps/", [&] { o.repair = true; });
+  p.flag("--compare-automatic", "with --init: after the repair (implies --repair), compare the given maps with the "
+         "automatic maps of each pair and keep the less distorted ones (see comap match --compare-automatic)",
+         [&] { o.repair = settings.initialization.compare_with_automatic_maps = true; });
   add_algorithm_options(p, settings, true);
   add_common_options(p, common);
   bool run = true;
@@ -410,7 +416,9 @@ int run_bench(int argc, char** argv)
       r.evaluation_seconds = eval_watch.seconds();
       if(!automatic && o.repair)
       {
-        r.set_initialization(repair_maps(*A->prepared, *B->prepared, settings, m12, m21));
+        const smc::Automatic_initialization_result repaired = repair_maps(*A->prepared, *B->prepared, settings, m12, m21);
+        r.set_initialization(repaired);
+        r.refined_as_automatic = repaired_maps_are_automatic(repaired);
         write_vertex_map(map_file(o.out + "/repaired_maps", r.a, r.b), m12, 1);
         write_vertex_map(map_file(o.out + "/repaired_maps", r.b, r.a), m21, 1);
       }
@@ -424,7 +432,7 @@ int run_bench(int argc, char** argv)
       }
       else
       {
-        refinement = refine_maps(*A->prepared, *B->prepared, m12, m21, settings, automatic, step_progress,
+        refinement = refine_maps(*A->prepared, *B->prepared, m12, m21, settings, automatic || r.refined_as_automatic, step_progress,
                                  r.a + " - " + r.b + ": ");
         eval_watch.reset();
         r.direction[0].refined = evaluate(*A, *B, m12, m21);
@@ -496,7 +504,7 @@ int run_bench(int argc, char** argv)
            "initial_coverage,refined_coverage,inconsistent_before,inconsistent_after,outer_iterations,"
            "kept_iterations,termination,preprocessing_seconds,initialization_seconds,data_preparation_seconds,"
            "trws_seconds,refinement_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
-           "distortion_repair_passes,sample_distortion_before,sample_distortion\n";
+           "distortion_repair_passes,sample_distortion_before,sample_distortion,automatic_maps_kept\n";
     for(const Pair_result& r : results)
     {
       if(!r.ok)
@@ -531,7 +539,8 @@ int run_bench(int argc, char** argv)
             << shortest(r.trws_seconds) << "," << shortest(r.refinement_seconds) << ","
             << shortest(r.evaluation_seconds) << "," << r.repair_passes << "," << shortest(r.torn_fraction_before)
             << "," << shortest(r.torn_fraction) << "," << r.distortion_repair_passes << ","
-            << shortest(r.sample_distortion_before) << "," << shortest(r.sample_distortion) << "\n";
+            << shortest(r.sample_distortion_before) << "," << shortest(r.sample_distortion) << ","
+            << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << "\n";
       }
     }
   }

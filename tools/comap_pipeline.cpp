@@ -126,8 +126,20 @@ smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const 
                                                        settings.initialization, map_12, map_21);
 }
 
+bool repaired_maps_are_automatic(const smc::Automatic_initialization_result& r)
+{
+  return r.automatic_maps_kept || r.repair_passes > 0 || r.distortion_repair_passes > 0;
+}
+
 std::string initialization_summary(const smc::Automatic_initialization_result& r)
 {
+  if(r.compared_with_automatic_maps)
+  {
+    const std::string distortions = "sample distortion " + fixed(r.automatic_maps_distortion, 4) + " (automatic) against " +
+                                    fixed(r.given_maps_distortion, 4) + " (given, repaired)";
+    if(r.automatic_maps_kept) return "the automatic maps replace the given ones: " + distortions;
+    return "the given maps are kept: " + distortions;
+  }
   return "torn fraction " + percent(r.torn_fraction_before) +
          (r.repair_passes > 0 ? " -> " + percent(r.torn_fraction) + " after " + std::to_string(r.repair_passes) +
                                     " repair pass(es)"
@@ -214,6 +226,10 @@ void write_initialization(Json_writer& json, const std::string& key, const smc::
       .value("distortion_repair_passes", r.distortion_repair_passes)
       .value("sample_distortion_before", r.sample_distortion_before)
       .value("sample_distortion", r.sample_distortion)
+      .value("compared_with_automatic_maps", r.compared_with_automatic_maps)
+      .value("automatic_maps_kept", r.automatic_maps_kept)
+      .value("given_maps_distortion", r.given_maps_distortion)
+      .value("automatic_maps_distortion", r.automatic_maps_distortion)
       .end_object();
 }
 

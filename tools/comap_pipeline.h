@@ -82,6 +82,12 @@ smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const 
 /// One progress line describing an initialisation or repair result.
 std::string initialization_summary(const smc::Automatic_initialization_result& r);
 
+/// Whether repair_maps() returned maps of the automatic initialisation (the automatic maps of
+/// --compare-automatic, or a kept repair pass, whose maps are ZoomOut maps steered by landmarks
+/// from the given maps' core) rather than the given maps: such maps are refined with the preset
+/// for automatic maps.
+bool repaired_maps_are_automatic(const smc::Automatic_initialization_result& r);
+
 /// The coupled refinement of `map_12` and `map_21` in place, with one progress line per MRF
 /// solve prefixed by `label`. `automatic_input`: the maps come from initialize_maps() (see
 /// Settings::keep_consistent_input_maps).
