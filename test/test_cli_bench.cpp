@@ -114,6 +114,8 @@ BOOST_AUTO_TEST_CASE(bench_on_a_two_pair_dataset)
   for(const char* column : {"initial_error", "refined_sym_error", "initial_cycle_error", "refined_fixed_points",
                             "preprocessing_seconds", "data_preparation_seconds", "trws_seconds"})
     BOOST_TEST(rows[0].count(column) == 1u, column);
+  BOOST_TEST(rows[0].at("automatic_maps_kept") == "");  // no comparison
+  BOOST_TEST(rows[0].at("refined_as_automatic") == "0");  // given maps, not repaired
   // Every refined map is written, 1-based, and re-evaluating it gives the CSV's figure.
   const std::vector<std::pair<std::string, const Mesh*> > maps = {
       {"s0_s1", &d.s1}, {"s1_s0", &d.s0}, {"s1_s2", &d.s2}, {"s2_s1", &d.s1}};
@@ -159,6 +161,19 @@ BOOST_AUTO_TEST_CASE(bench_automatic_pipeline_and_comparison_plot)
   BOOST_TEST(read_map(out + "/init_maps/s0_s1.map", 1).size() == num_vertices(d.s0));
   BOOST_TEST(read_map(out + "/maps/s1_s0.map", 1).size() == num_vertices(d.s1));
   BOOST_TEST(lines_of(read_text(out + "/pairs.csv")).size() == 3u);
+  BOOST_TEST(read_csv(out + "/pairs.csv")[0].at("refined_as_automatic") == "1");
+  // Given maps compared with the automatic ones: the column says which were kept, and maps kept
+  // from the automatic initialisation are refined as automatic maps.
+  const std::string compared = in_scratch("bench_compare");
+  const Run c = comap("bench --data " + d.dir + " --init " + d.dir + "/maps/noisy --out " + compared +
+                      " --limit 1 --compare-automatic --no-refine" + fast_options());
+  BOOST_TEST_REQUIRE(c.code == 0, c.err);
+  const auto rows = read_csv(compared + "/pairs.csv");
+  BOOST_TEST_REQUIRE(rows.size() == 2u);
+  BOOST_TEST((rows[0].at("automatic_maps_kept") == "0" || rows[0].at("automatic_maps_kept") == "1"));
+  BOOST_TEST(rows[0].at("refined_as_automatic") == rows[0].at("automatic_maps_kept"));
+  BOOST_TEST(read_map(compared + "/repaired_maps/s0_s1.map", 1) == read_map(compared + "/maps/s0_s1.map", 1));
+  BOOST_TEST(read_text(compared + "/summary.json").find("\"compare_with_automatic_maps\": true") != std::string::npos);
   // A non-coupled run compared with the coupled one: both curves in its plot.
   const std::string ablation = in_scratch("bench_ablation");
   const Run a = comap("bench --data " + d.dir + " --out " + ablation + " --limit 1 --no-coupling --compare " + out +

@@ -676,15 +676,13 @@ BOOST_AUTO_TEST_CASE(distortion_repair_restores_swapped_limbs)
 
 BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted_pair)
 {
-  // Given maps with swapped arms, not repaired (no repair pass): the automatic maps of the pair
-  // distort the sample distances less and replace them; they are exactly the maps of
-  // automatic_initial_maps() with the same parameters.
+  // Given maps with swapped arms, compared as they are: the automatic maps of the pair distort the
+  // sample distances less and replace them; they are exactly the maps of automatic_initial_maps().
   const Pair_fixture& f = symmetric();
   const Swapped_arms s = swapped_arms(f);
   std::vector<std::size_t> c12 = s.map_12, c21 = s.map_21, a12, a21;
-  const smc::Automatic_initialization_result c = smc::repair_torn_maps(
-      f.pair.m1, f.pair.m2, c12, c21, params::compare_with_automatic_maps(true, params::number_of_repair_passes(0)));
-  smc::automatic_initial_maps(f.pair.m1, f.pair.m2, a12, a21, params::number_of_repair_passes(0));
+  const smc::Automatic_initialization_result c = smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, c12, c21);
+  const smc::Automatic_initialization_result a = smc::automatic_initial_maps(f.pair.m1, f.pair.m2, a12, a21);
   BOOST_TEST_MESSAGE("swapped arms against the automatic maps: sample distortion " << c.given_maps_distortion
                                                                                   << " against "
                                                                                   << c.automatic_maps_distortion);
@@ -693,15 +691,14 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   BOOST_TEST(c.automatic_maps_distortion < c.given_maps_distortion);
   BOOST_TEST(c12 == a12);
   BOOST_TEST(c21 == a21);
+  BOOST_TEST(c.repair_passes == a.repair_passes);  // the result describes the automatic maps
   BOOST_TEST(f.error_12(c12, f.pair.gt_12) < 0.015);
-  BOOST_TEST(c.final_basis_size == 200);
   // The true maps against coarse automatic maps (basis 4): the true maps are less distorted and
   // come back unchanged.
   std::vector<std::size_t> t12 = f.pair.gt_12, t21 = f.pair.gt_21;
-  const smc::Automatic_initialization_result t = smc::repair_torn_maps(
+  const smc::Automatic_initialization_result t = smc::compare_with_automatic_maps(
       f.pair.m1, f.pair.m2, t12, t21,
-      params::compare_with_automatic_maps(
-          true, params::spectral_basis_size(3, params::zoomout_final_size(4, params::zoomout_pass_size(4)))));
+      params::spectral_basis_size(3, params::zoomout_final_size(4, params::zoomout_pass_size(4))));
   BOOST_TEST_MESSAGE("true maps against coarse automatic maps: sample distortion " << t.given_maps_distortion
                                                                                   << " against "
                                                                                   << t.automatic_maps_distortion);
@@ -710,9 +707,21 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   BOOST_TEST(t.given_maps_distortion < t.automatic_maps_distortion);
   BOOST_TEST(t12 == f.pair.gt_12);
   BOOST_TEST(t21 == f.pair.gt_21);
-  // Without the parameter nothing is compared.
-  std::vector<std::size_t> n12 = f.pair.gt_12, n21 = f.pair.gt_21;
-  BOOST_TEST(!smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21).compared_with_automatic_maps);
+  // repair_torn_maps() compares the repaired maps when asked, and only then.
+  std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21, u12 = s.map_12, u21 = s.map_21;
+  const smc::Automatic_initialization_result r =
+      smc::repair_torn_maps(f.pair.m1, f.pair.m2, r12, r21, params::compare_with_automatic_maps(true));
+  const smc::Automatic_initialization_result u = smc::repair_torn_maps(f.pair.m1, f.pair.m2, u12, u21);
+  BOOST_TEST(r.compared_with_automatic_maps);
+  BOOST_TEST(!u.compared_with_automatic_maps);
+  BOOST_TEST(u.repair_passes >= 1);
+  BOOST_TEST((r.automatic_maps_kept ? r12 == a12 : r12 == u12));
+  BOOST_TEST(r.automatic_maps_kept == (r.automatic_maps_distortion < r.given_maps_distortion));
+  BOOST_TEST(r.automatic_maps_distortion == c.automatic_maps_distortion);  // the same automatic maps
+  BOOST_TEST(r.given_maps_distortion < c.given_maps_distortion);          // the repair removed the swap
+  // Maps that do not fit the meshes are rejected.
+  std::vector<std::size_t> short12(s.map_12.begin(), s.map_12.end() - 1), ok21 = s.map_21;
+  BOOST_CHECK_THROW(smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, short12, ok21), smc::Invalid_map_error);
 }
 
 BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)

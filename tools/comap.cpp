@@ -101,7 +101,7 @@ int match(int argc, char** argv)
   Common_options common;
   std::string out_12, out_21, init_12, init_21, stats;
   int index_base = 1;
-  bool no_refine = false, repair = false;
+  bool no_refine = false, repair = false, compare = false;
   Option_parser p("match", "comap match SOURCE TARGET --out-12 FILE --out-21 FILE [options]",
                   "Computes dense point-to-point maps SOURCE -> TARGET and TARGET -> SOURCE: from the given initial maps, "
                   "or from automatic ones (functional maps + ZoomOut), refined jointly by the coupled optimisation of "
@@ -126,9 +126,9 @@ int match(int argc, char** argv)
   p.flag("--repair", "given initial maps: when their tears cut off parts of a mesh (swapped limbs), recompute "
          "them with landmarks from their consistent core (automatic maps are always repaired, see "
          "--init-repair-passes)", [&] { repair = true; });
-  p.flag("--compare-automatic", "given initial maps: after the repair (implies --repair), compare them with the "
+  p.flag("--compare-automatic", "given initial maps (after the repair with --repair): compare them with the "
          "automatic maps of the pair and keep the less distorted ones (the time of one more initialisation)",
-         [&] { repair = settings.initialization.compare_with_automatic_maps = true; });
+         [&] { compare = settings.initialization.compare_with_automatic_maps = true; });
   add_algorithm_options(p, settings, true);
   add_common_options(p, common);
   bool run = true;
@@ -141,7 +141,10 @@ int match(int argc, char** argv)
   const bool automatic = init_12.empty();
   if(!automatic && !landmarks_file.empty())
     throw Usage_error("--landmarks guides the automatic initialisation: do not combine it with --init-12/--init-21");
-  check_settings(settings, automatic || repair);
+  if(automatic && compare)
+    throw Usage_error("--compare-automatic compares given maps (--init-12/--init-21) with the automatic ones");
+  const bool repair_step = repair || compare;  // both need the initialisation's data
+  check_settings(settings, automatic || repair_step);
   check_writable(out_12);
   check_writable(out_21);
   if(!stats.empty()) check_writable(stats);
@@ -167,7 +170,7 @@ int match(int argc, char** argv)
   }
 
   const bool refine = !no_refine;
-  const bool initialization_data = automatic || repair;
+  const bool initialization_data = automatic || repair_step;
   // Both shapes at once (their eigensolvers are sequential).
   std::unique_ptr<Prepared_shape> s1, s2;
   smc::internal::invoke_both<Concurrency>(
@@ -183,17 +186,17 @@ int match(int argc, char** argv)
                   percent(initialization.cycle_fixed_fraction) + ", orientation agreement " +
                   percent(initialization.orientation_agreement) + ", " + initialization_summary(initialization));
   }
-  else if(repair)
+  else if(repair_step)
   {
-    progress.line(settings.initialization.compare_with_automatic_maps
-                      ? "repairing the tears of the initial maps, then comparing them with the automatic maps"
-                      : "repairing the tears of the initial maps");
-    initialization = repair_maps(*s1, *s2, settings, map_12, map_21);
-    progress.line("repair in " + duration(initialization.total_seconds) + ": " + initialization_summary(initialization));
+    progress.line(!compare ? "repairing the tears of the initial maps"
+                  : repair ? "repairing the tears of the initial maps, then comparing them with the automatic maps"
+                           : "comparing the initial maps with the automatic maps");
+    initialization = repair_maps(*s1, *s2, settings, map_12, map_21, repair);
+    progress.line((repair ? "repair in " : "comparison in ") + duration(initialization.total_seconds) + ": " + initialization_summary(initialization));
   }
   // Maps of the automatic initialisation that replaced the given ones (a kept repair pass, or the
   // automatic maps of --compare-automatic) are refined as automatic maps.
-  const bool automatic_maps = automatic || (repair && repaired_maps_are_automatic(initialization));
+  const bool automatic_maps = automatic || (repair_step && repaired_maps_are_automatic(initialization));
   const std::size_t inconsistent_initial = smc::number_of_inconsistent_vertices(map_12, map_21);
   const double coverage_12_initial = smc::map_coverage(map_12, n2), coverage_21_initial = smc::map_coverage(map_21, n1);
   smc::Coupled_refinement_result refinement;
@@ -224,7 +227,7 @@ int match(int argc, char** argv)
       write_initialization(json, "initialization", initialization);
     else
       json.begin_object("initialization").value("map_12", init_12).value("map_21", init_21).end_object();
-    if(repair) write_initialization(json, "repair", initialization);
+    if(repair_step) write_initialization(json, "repair", initialization);
     json.begin_object("initial_maps")
         .value("inconsistent_vertices", inconsistent_initial)
         .value("coverage_12", coverage_12_initial)
@@ -258,9 +261,10 @@ int match(int argc, char** argv)
               << "\n";
   else
     std::cout << "initial maps: " << init_12 << ", " << init_21
-              << (repair ? ", repaired in " + duration(initialization.total_seconds) + ": " +
-                               initialization_summary(initialization)
-                         : std::string())
+              << (repair_step ? std::string(repair ? ", repaired" : ", compared") + " in " +
+                                    duration(initialization.total_seconds) + ": " +
+                                    initialization_summary(initialization)
+                              : std::string())
               << "\n";
   const std::size_t inconsistent_final = smc::number_of_inconsistent_vertices(map_12, map_21);
   if(refine)

@@ -37,7 +37,7 @@ struct Bench_options
 {
   std::string data, pairs, init, out, compare, label;
   int jobs = 1, limit = 0, cache = 0;
-  bool verbose = false, no_refine = false, repair = false;
+  bool verbose = false, no_refine = false, repair = false, compare_automatic = false;
 };
 
 /// A prepared dataset shape with its ground truth.
@@ -314,9 +314,9 @@ int run_bench(int argc, char** argv)
          [&] { o.no_refine = true; });
   p.flag("--repair", "with --init: repair the tears of the given maps before the refinement (see comap match "
          "--repair); the repaired maps go to OUT/repaired_maps/", [&] { o.repair = true; });
-  p.flag("--compare-automatic", "with --init: after the repair (implies --repair), compare the given maps with the "
+  p.flag("--compare-automatic", "with --init (after the repair with --repair): compare the given maps with the "
          "automatic maps of each pair and keep the less distorted ones (see comap match --compare-automatic)",
-         [&] { o.repair = settings.initialization.compare_with_automatic_maps = true; });
+         [&] { o.compare_automatic = settings.initialization.compare_with_automatic_maps = true; });
   add_algorithm_options(p, settings, true);
   add_common_options(p, common);
   bool run = true;
@@ -325,7 +325,9 @@ int run_bench(int argc, char** argv)
   if(!extra.empty()) throw Usage_error("unexpected argument " + extra.front());
   if(o.data.empty() || o.out.empty()) throw Usage_error("bench needs --data DIR and --out DIR");
   const bool automatic = o.init.empty();
-  check_settings(settings, automatic || o.repair);
+  if(automatic && o.compare_automatic) throw Usage_error("--compare-automatic needs --init (given maps to compare)");
+  const bool repair_step = o.repair || o.compare_automatic;  // both need the initialisation's data
+  check_settings(settings, automatic || repair_step);
   if(o.label.empty()) o.label = o.no_refine ? "no" : settings.refinement.use_coupling ? "coupled" : "non-coupled";
   if(o.pairs.empty()) o.pairs = o.data + "/test_pairs.txt";
   if(!directory_exists(o.data)) throw Input_error("--data: " + o.data + " is not a directory");
@@ -353,7 +355,7 @@ int run_bench(int argc, char** argv)
   if(!o.compare.empty()) other = read_run_curves(o.compare);
   make_directories(o.out + "/maps");
   if(automatic) make_directories(o.out + "/init_maps");
-  if(o.repair && !automatic) make_directories(o.out + "/repaired_maps");
+  if(repair_step && !automatic) make_directories(o.out + "/repaired_maps");
 
   const Thread_limit limit(common.threads);
   const Progress progress(common.quiet);
@@ -370,7 +372,7 @@ int run_bench(int argc, char** argv)
                     [&](const std::string& name) {
                       std::shared_ptr<Bench_shape> s(new Bench_shape);
                       Mesh mesh = read_triangle_mesh(mesh_file(name));
-                      s->prepared = prepare_shape(name, std::move(mesh), settings, !o.no_refine, automatic || o.repair,
+                      s->prepared = prepare_shape(name, std::move(mesh), settings, !o.no_refine, automatic || repair_step,
                                                   step_progress);
                       const std::size_t n = s->prepared->number_of_vertices();
                       s->vts = read_correspondences(vts_file(name), 1, n);
@@ -414,9 +416,9 @@ int run_bench(int argc, char** argv)
       r.direction[0].initial = evaluate(*A, *B, m12, m21);
       r.direction[1].initial = evaluate(*B, *A, m21, m12);
       r.evaluation_seconds = eval_watch.seconds();
-      if(!automatic && o.repair)
+      if(!automatic && repair_step)
       {
-        const smc::Automatic_initialization_result repaired = repair_maps(*A->prepared, *B->prepared, settings, m12, m21);
+        const smc::Automatic_initialization_result repaired = repair_maps(*A->prepared, *B->prepared, settings, m12, m21, o.repair);
         r.set_initialization(repaired);
         r.refined_as_automatic = repaired_maps_are_automatic(repaired);
         write_vertex_map(map_file(o.out + "/repaired_maps", r.a, r.b), m12, 1);
@@ -504,7 +506,8 @@ int run_bench(int argc, char** argv)
            "initial_coverage,refined_coverage,inconsistent_before,inconsistent_after,outer_iterations,"
            "kept_iterations,termination,preprocessing_seconds,initialization_seconds,data_preparation_seconds,"
            "trws_seconds,refinement_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
-           "distortion_repair_passes,sample_distortion_before,sample_distortion,automatic_maps_kept\n";
+           "distortion_repair_passes,sample_distortion_before,sample_distortion,automatic_maps_kept,"
+           "refined_as_automatic\n";
     for(const Pair_result& r : results)
     {
       if(!r.ok)
@@ -540,7 +543,8 @@ int run_bench(int argc, char** argv)
             << shortest(r.evaluation_seconds) << "," << r.repair_passes << "," << shortest(r.torn_fraction_before)
             << "," << shortest(r.torn_fraction) << "," << r.distortion_repair_passes << ","
             << shortest(r.sample_distortion_before) << "," << shortest(r.sample_distortion) << ","
-            << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << "\n";
+            << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << ","
+            << int(automatic || r.refined_as_automatic) << "\n";
       }
     }
   }
@@ -630,7 +634,7 @@ int run_bench(int argc, char** argv)
         .value("pairs", succeeded)
         .value("maps", 2 * succeeded)
         .value("failed_pairs", failed);
-    write_settings(json, "settings", settings, automatic || o.repair, automatic);
+    write_settings(json, "settings", settings, automatic || repair_step, automatic);
     write_aggregate(json, "initial", initial);
     write_aggregate(json, "refined", refined);
     const double n = succeeded > 0 ? static_cast<double>(succeeded) : 1.0;

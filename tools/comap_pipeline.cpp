@@ -120,10 +120,11 @@ smc::Automatic_initialization_result initialize_maps(const Prepared_shape& a, co
 }
 
 smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const Prepared_shape& b,
-                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21)
+                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21,
+                                                 bool repair_tears)
 {
   return smc::internal::repair_given_maps<Concurrency>(initialization_shape(a), initialization_shape(b),
-                                                       settings.initialization, map_12, map_21);
+                                                       settings.initialization, map_12, map_21, repair_tears);
 }
 
 bool repaired_maps_are_automatic(const smc::Automatic_initialization_result& r)
@@ -135,8 +136,8 @@ std::string initialization_summary(const smc::Automatic_initialization_result& r
 {
   if(r.compared_with_automatic_maps)
   {
-    const std::string distortions = "sample distortion " + fixed(r.automatic_maps_distortion, 4) + " (automatic) against " +
-                                    fixed(r.given_maps_distortion, 4) + " (given, repaired)";
+    const std::string distortions = "sample distortion " + fixed(r.automatic_maps_distortion, 4) +
+                                    " (automatic) against " + fixed(r.given_maps_distortion, 4) + " (given)";
     if(r.automatic_maps_kept) return "the automatic maps replace the given ones: " + distortions;
     return "the given maps are kept: " + distortions;
   }

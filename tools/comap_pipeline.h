@@ -76,9 +76,12 @@ smc::Automatic_initialization_result initialize_maps(const Prepared_shape& a, co
                                                      const Settings& settings, Vertex_map& map_12,
                                                      Vertex_map& map_21);
 /// The tear repair of the automatic initialisation applied to given maps (see
-/// smc::repair_torn_maps()); the shapes must be prepared for the initialisation.
+/// smc::repair_torn_maps(); `repair_tears` false: none), then, with
+/// settings.initialization.compare_with_automatic_maps, the comparison with the automatic maps
+/// (smc::compare_with_automatic_maps()); the shapes must be prepared for the initialisation.
 smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const Prepared_shape& b,
-                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21);
+                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21,
+                                                 bool repair_tears);
 /// One progress line describing an initialisation or repair result.
 std::string initialization_summary(const smc::Automatic_initialization_result& r);
 

@@ -353,6 +353,8 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
         .value("zoomout_number_of_samples", in.zoomout_number_of_samples)
         .value("tear_repair_passes", in.tear_repair_passes)
         .value("tear_repair_distortion_tolerance", in.tear_repair_distortion_tolerance)
+        .value("distortion_repair_passes", in.distortion_repair_passes)
+        .value("compare_with_automatic_maps", in.compare_with_automatic_maps)
         .end_object();
   }
   json.end_object();

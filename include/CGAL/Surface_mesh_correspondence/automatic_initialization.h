@@ -93,7 +93,9 @@ struct Automatic_initialization_result
   /// Comparison with the automatic maps (repair_torn_maps() with `compare_with_automatic_maps`):
   /// whether it ran, whether the automatic maps replaced the (repaired) given maps, and the
   /// geodesic distortions of the sample maps (mean of both directions) of both pairs of maps at
-  /// the final basis size. When the automatic maps are kept, every other field describes them.
+  /// the final basis size. When the automatic maps are kept, the other fields describe them (their
+  /// own repair passes, torn fractions, functional maps), except the times and `passes`, which
+  /// count both the given maps' repair and the automatic initialisation.
   bool compared_with_automatic_maps = false;
   bool automatic_maps_kept = false;
   double given_maps_distortion = 0, automatic_maps_distortion = 0;
@@ -1578,13 +1580,13 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
 /// continuous, keeps its orientation, and its isometric core is turned too. Returns `given`, or
 /// the automatic maps' result, with the comparison's fields and the times of both.
 template <typename ConcurrencyTag>
-Automatic_initialization_result compare_with_automatic_maps(const Initialization_shape& shape1,
-                                                            const Initialization_shape& shape2,
-                                                            const Initialization_settings& s,
-                                                            Initialization_pass_cache& cache,
-                                                            std::vector<std::size_t>& map_12,
-                                                            std::vector<std::size_t>& map_21,
-                                                            const Automatic_initialization_result& given)
+Automatic_initialization_result compare_given_with_automatic_maps(const Initialization_shape& shape1,
+                                                                  const Initialization_shape& shape2,
+                                                                  const Initialization_settings& s,
+                                                                  Initialization_pass_cache& cache,
+                                                                  std::vector<std::size_t>& map_12,
+                                                                  std::vector<std::size_t>& map_21,
+                                                                  const Automatic_initialization_result& given)
 {
   std::vector<std::size_t> a12, a21;
   Automatic_initialization_result automatic =
@@ -1614,13 +1616,14 @@ Automatic_initialization_result compare_with_automatic_maps(const Initialization
   return r;
 }
 
-/// repair_torn_maps() and repair_distorted_maps() for maps computed elsewhere: their orientation
-/// (relative to the embeddings) is read from the orientation agreement of their triangles, and the
-/// result holds their tears and distortions.
+/// repair_torn_maps() and repair_distorted_maps() for maps computed elsewhere (unless `repair` is
+/// false), then, with `compare_with_automatic_maps`, the comparison with the automatic maps: their
+/// orientation (relative to the embeddings) is read from the orientation agreement of their
+/// triangles, and the result holds their tears and distortions.
 template <typename ConcurrencyTag>
 Automatic_initialization_result repair_given_maps(const Initialization_shape& shape1, const Initialization_shape& shape2,
                                                   const Initialization_settings& s, std::vector<std::size_t>& map_12,
-                                                  std::vector<std::size_t>& map_21)
+                                                  std::vector<std::size_t>& map_21, bool repair = true)
 {
   const auto start = std::chrono::steady_clock::now();
   const Indexed_mesh& m1 = *shape1.mesh;
@@ -1631,14 +1634,17 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
                                        orientation_agreement(m2, m1, vertex_normals(m1), t21));
   given.orientation_sign = given.orientation_agreement >= 0.5 ? 1 : -1;
   Initialization_pass_cache cache;
-  Automatic_initialization_result r =
-      repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
-  if(s.distortion_repair_passes > 0)
-    r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
-  // Maps of a kept repair pass grow to the final size (the given maps have no functional maps).
-  grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+  Automatic_initialization_result r = given;
+  if(repair)
+  {
+    r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
+    if(s.distortion_repair_passes > 0)
+      r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
+    // Maps of a kept repair pass grow to the final size (the given maps have no functional maps).
+    grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+  }
   if(s.compare_with_automatic_maps)
-    r = compare_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+    r = compare_given_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -1850,6 +1856,33 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
       &shape_2.data().largest_spectrum(), s, map_12, map_21, start);
 }
 
+namespace internal {
+
+/// Both public functions on given maps: repair_torn_maps() (`repair` true) and
+/// compare_with_automatic_maps() (`compare` true, which overrides the named parameter).
+template <typename ConcurrencyTag, typename TriangleMesh1, typename TriangleMesh2, typename NamedParameters>
+Automatic_initialization_result repair_given_maps_of_meshes(const TriangleMesh1& tm1, const TriangleMesh2& tm2,
+                                                            std::vector<std::size_t>& map_12,
+                                                            std::vector<std::size_t>& map_21,
+                                                            const NamedParameters& np, bool repair, bool compare)
+{
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  Initialization_settings s = initialization_settings(np);
+  if(compare) s.compare_with_automatic_maps = true;
+  check_initialization_settings(s);
+  const Indexed_mesh m1 = initialization_mesh(tm1, np, "mesh 1");
+  const Indexed_mesh m2 = initialization_mesh(tm2, np, "mesh 2");
+  check_vertex_map(map_12, std::size_t(m1.number_of_vertices()), std::size_t(m2.number_of_vertices()), "map 1->2");
+  check_vertex_map(map_21, std::size_t(m2.number_of_vertices()), std::size_t(m1.number_of_vertices()), "map 2->1");
+  return on_prepared_meshes<ConcurrencyTag>(m1, nullptr, m2, nullptr, s, start,
+                                            [&](const Initialization_shape& a, const Initialization_shape& b) {
+                                              return repair_given_maps<ConcurrencyTag>(a, b, s, map_12, map_21,
+                                                                                       repair);
+                                            });
+}
+
+} // namespace internal
+
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Repairs maps that swap parts of the shapes (limbs, feet): the tear repair of
 /// automatic_initial_maps() applied to maps computed elsewhere. Each map's source is cut along its
@@ -1871,7 +1904,8 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 /// \param np the named parameters of automatic_initial_maps(); `landmarks` are kept in every pass
 /// \returns `repair_passes` (0: the maps were kept), the torn fractions before and after,
 ///   `distortion_repair_passes` and the sample distortions before and after, timings; with
-///   `compare_with_automatic_maps`, `automatic_maps_kept` and both distortions compared
+///   `compare_with_automatic_maps`, `automatic_maps_kept` and both distortions compared (when the
+///   automatic maps are kept, the other fields describe them, see Automatic_initialization_result)
 /// \throws Invalid_map_error for maps of the wrong size or with entries out of range, and the
 ///   exceptions of automatic_initial_maps()
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename TriangleMesh2,
@@ -1880,18 +1914,35 @@ Automatic_initialization_result repair_torn_maps(const TriangleMesh1& tm1, const
                                                  std::vector<std::size_t>& map_12, std::vector<std::size_t>& map_21,
                                                  const NamedParameters& np = parameters::default_values())
 {
-  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-  const internal::Initialization_settings s = internal::initialization_settings(np);
-  internal::check_initialization_settings(s);
-  const internal::Indexed_mesh m1 = internal::initialization_mesh(tm1, np, "mesh 1");
-  const internal::Indexed_mesh m2 = internal::initialization_mesh(tm2, np, "mesh 2");
-  check_vertex_map(map_12, std::size_t(m1.number_of_vertices()), std::size_t(m2.number_of_vertices()), "map 1->2");
-  check_vertex_map(map_21, std::size_t(m2.number_of_vertices()), std::size_t(m1.number_of_vertices()), "map 2->1");
-  return internal::on_prepared_meshes<ConcurrencyTag>(
-      m1, nullptr, m2, nullptr, s, start,
-      [&](const internal::Initialization_shape& a, const internal::Initialization_shape& b) {
-        return internal::repair_given_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
-      });
+  return internal::repair_given_maps_of_meshes<ConcurrencyTag>(tm1, tm2, map_12, map_21, np, true, false);
+}
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Keeps maps computed elsewhere, or replaces them by the automatic maps of the pair
+/// (automatic_initial_maps() with the same named parameters), whichever distort the geodesic
+/// distances between 100 farthest-point samples of each mesh less (mean of both directions; ties
+/// keep the given maps). The given maps are not repaired (repair_torn_maps() with
+/// `compare_with_automatic_maps(true)` repairs them first). A safety net for maps that may be
+/// wrong as a whole (symmetry flips, a body turned by 180 degrees), which no local refinement
+/// undoes; it costs one automatic initialisation. Sample distortion is not accuracy: on a pair
+/// whose deformation stretches the surface, exact maps can distort more than slightly less
+/// accurate automatic maps, which then replace them.
+///
+/// \param map_12, map_21 input and output, as for repair_torn_maps()
+/// \param np the named parameters of automatic_initial_maps()
+/// \returns the result of the automatic maps when they replaced the given ones, else a result
+///   describing the given maps; in both, `compared_with_automatic_maps`, `automatic_maps_kept`,
+///   `given_maps_distortion`, `automatic_maps_distortion` and the times of the whole comparison
+/// \throws Invalid_map_error for maps of the wrong size or with entries out of range, and the
+///   exceptions of automatic_initial_maps()
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename TriangleMesh2,
+          typename NamedParameters = parameters::Default_named_parameters>
+Automatic_initialization_result compare_with_automatic_maps(const TriangleMesh1& tm1, const TriangleMesh2& tm2,
+                                                            std::vector<std::size_t>& map_12,
+                                                            std::vector<std::size_t>& map_21,
+                                                            const NamedParameters& np = parameters::default_values())
+{
+  return internal::repair_given_maps_of_meshes<ConcurrencyTag>(tm1, tm2, map_12, map_21, np, false, true);
 }
 
 } // namespace Surface_mesh_correspondence
