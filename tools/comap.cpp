@@ -192,11 +192,12 @@ int match(int argc, char** argv)
                   : repair ? "repairing the tears of the initial maps, then comparing them with the automatic maps"
                            : "comparing the initial maps with the automatic maps");
     initialization = repair_maps(*s1, *s2, settings, map_12, map_21, repair);
-    progress.line((repair ? "repair in " : "comparison in ") + duration(initialization.total_seconds) + ": " + initialization_summary(initialization));
+    progress.line((repair ? "repair in " : "comparison in ") + duration(initialization.total_seconds) + ": " +
+                  initialization_summary(initialization));
   }
   // Maps of the automatic initialisation that replaced the given ones (a kept repair pass, or the
   // automatic maps of --compare-automatic) are refined as automatic maps.
-  const bool automatic_maps = automatic || (repair_step && repaired_maps_are_automatic(initialization));
+  const bool automatic_maps = automatic || repaired_maps_are_automatic(initialization);
   const std::size_t inconsistent_initial = smc::number_of_inconsistent_vertices(map_12, map_21);
   const double coverage_12_initial = smc::map_coverage(map_12, n2), coverage_21_initial = smc::map_coverage(map_21, n1);
   smc::Coupled_refinement_result refinement;

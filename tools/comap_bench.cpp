@@ -400,6 +400,7 @@ int run_bench(int argc, char** argv)
       if(automatic)
       {
         r.set_initialization(initialize_maps(*A->prepared, *B->prepared, settings, m12, m21));
+        r.refined_as_automatic = true;
         write_vertex_map(map_file(o.out + "/init_maps", r.a, r.b), m12, 1);
         write_vertex_map(map_file(o.out + "/init_maps", r.b, r.a), m21, 1);
       }
@@ -434,7 +435,7 @@ int run_bench(int argc, char** argv)
       }
       else
       {
-        refinement = refine_maps(*A->prepared, *B->prepared, m12, m21, settings, automatic || r.refined_as_automatic, step_progress,
+        refinement = refine_maps(*A->prepared, *B->prepared, m12, m21, settings, r.refined_as_automatic, step_progress,
                                  r.a + " - " + r.b + ": ");
         eval_watch.reset();
         r.direction[0].refined = evaluate(*A, *B, m12, m21);
@@ -544,7 +545,7 @@ int run_bench(int argc, char** argv)
             << "," << shortest(r.torn_fraction) << "," << r.distortion_repair_passes << ","
             << shortest(r.sample_distortion_before) << "," << shortest(r.sample_distortion) << ","
             << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << ","
-            << int(automatic || r.refined_as_automatic) << "\n";
+            << int(r.refined_as_automatic) << "\n";
       }
     }
   }
