@@ -115,6 +115,8 @@ BOOST_AUTO_TEST_CASE(bench_on_a_two_pair_dataset)
                             "preprocessing_seconds", "data_preparation_seconds", "trws_seconds"})
     BOOST_TEST(rows[0].count(column) == 1u, column);
   BOOST_TEST(rows[0].at("automatic_maps_kept") == "");  // no comparison
+  BOOST_TEST(rows[0].at("given_maps_distortion") == "");
+  BOOST_TEST(rows[0].at("automatic_maps_distortion") == "");
   BOOST_TEST(rows[0].at("refined_as_automatic") == "0");  // given maps, not repaired
   // Every refined map is written, 1-based, and re-evaluating it gives the CSV's figure.
   const std::vector<std::pair<std::string, const Mesh*> > maps = {
@@ -172,6 +174,12 @@ BOOST_AUTO_TEST_CASE(bench_automatic_pipeline_and_comparison_plot)
   BOOST_TEST_REQUIRE(rows.size() == 2u);
   BOOST_TEST((rows[0].at("automatic_maps_kept") == "0" || rows[0].at("automatic_maps_kept") == "1"));
   BOOST_TEST(rows[0].at("refined_as_automatic") == rows[0].at("automatic_maps_kept"));
+  // Both distortions compared, and the kept maps are the less distorted ones.
+  const double given_distortion = std::stod(rows[0].at("given_maps_distortion"));
+  const double automatic_distortion = std::stod(rows[0].at("automatic_maps_distortion"));
+  BOOST_TEST(given_distortion > 0);
+  BOOST_TEST(automatic_distortion > 0);
+  BOOST_TEST((rows[0].at("automatic_maps_kept") == "1") == (automatic_distortion < given_distortion));
   BOOST_TEST(read_map(compared + "/repaired_maps/s0_s1.map", 1) == read_map(compared + "/maps/s0_s1.map", 1));
   BOOST_TEST(read_text(compared + "/summary.json").find("\"compare_with_automatic_maps\": true") != std::string::npos);
   // A non-coupled run compared with the coupled one: both curves in its plot.

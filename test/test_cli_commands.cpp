@@ -280,6 +280,7 @@ BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)
   BOOST_TEST(stats.find("\"consistency_weight\": 0.5,") != std::string::npos);
   // --compare-automatic: the given maps compete with the automatic maps, as they are or (with
   // --repair) repaired, exactly as in the library.
+  double unrepaired_distortion = 0;
   for(const bool with_repair : {false, true})
   {
     const std::string tag = with_repair ? "rc" : "c";
@@ -311,7 +312,21 @@ BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)
     if(!with_repair) BOOST_TEST(compared.automatic_maps_kept);
     if(compared.automatic_maps_kept)
       BOOST_TEST(compare_stats.find("\"consistency_weight\": 0.5,") != std::string::npos);
+    if(!with_repair) unrepaired_distortion = compared.given_maps_distortion;
   }
+  // --compare-automatic-above: given maps distorted less than the threshold are kept as they are,
+  // without the automatic maps.
+  const Run k = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("turned12.map") + " --init-21 " +
+                      in_scratch("turned21.map") + " --index-base 0 --compare-automatic --compare-automatic-above " +
+                      std::to_string(1.01 * unrepaired_distortion) + " --no-refine --init-basis 40 --quiet" +
+                      " --out-12 " + in_scratch("k12.map") + " --out-21 " + in_scratch("k21.map") + " --stats " +
+                      in_scratch("k.json"));
+  BOOST_TEST_REQUIRE(k.code == 0, k.err);
+  BOOST_TEST(read_map(in_scratch("k12.map"), 0) == t12);
+  BOOST_TEST(read_map(in_scratch("k21.map"), 0) == t21);
+  const std::string kept_stats = read_text(in_scratch("k.json"));
+  BOOST_TEST(kept_stats.find("\"automatic_maps_computed\": false") != std::string::npos);
+  BOOST_TEST(kept_stats.find("\"automatic_maps_kept\": false") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(eval_matches_the_library)

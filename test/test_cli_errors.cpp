@@ -141,6 +141,8 @@ BOOST_AUTO_TEST_CASE(bad_options)
   expect_failure(match_args(p.a, p.b, " --init-distortion-samples 1"), 2, {"--init-distortion-samples"});
   expect_failure(match_args(p.a, p.b, " --init-repair-passes -1"), 2, {"--init-repair-passes"});
   expect_failure(match_args(p.a, p.b, " --compare-automatic"), 2, {"--compare-automatic", "--init-12"});
+  expect_failure(match_args(p.a, p.b, " --compare-automatic-above 0.05"), 2,
+                 {"--compare-automatic-above needs --compare-automatic"});
   expect_failure(match_args(p.a, p.b, " --init-tear-threshold 0"), 2, {"tear_threshold"});
   expect_failure(match_args(p.a, p.b, " --init-tear-fraction 1.5"), 2, {"tear_min_fraction"});
   expect_failure(match_args(p.a, p.b, " --frobnicate"), 2, {"unknown option --frobnicate"});

@@ -719,9 +719,29 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   BOOST_TEST(r.automatic_maps_kept == (r.automatic_maps_distortion < r.given_maps_distortion));
   BOOST_TEST(r.automatic_maps_distortion == c.automatic_maps_distortion);  // the same automatic maps
   BOOST_TEST(r.given_maps_distortion < c.given_maps_distortion);          // the repair removed the swap
-  // Maps that do not fit the meshes are rejected.
+  // The comparison threshold: the swapped arms with a threshold just above their distortion are
+  // kept without computing the automatic maps; just below it, the comparison runs as without one.
+  BOOST_TEST(c.automatic_maps_computed);
+  for(const double factor : {1.001, 0.999})
+  {
+    std::vector<std::size_t> h12 = s.map_12, h21 = s.map_21;
+    const smc::Automatic_initialization_result h = smc::compare_with_automatic_maps(
+        f.pair.m1, f.pair.m2, h12, h21,
+        params::automatic_maps_comparison_threshold(factor * c.given_maps_distortion));
+    BOOST_TEST(h.compared_with_automatic_maps);
+    BOOST_TEST(h.given_maps_distortion == c.given_maps_distortion);
+    BOOST_TEST(h.automatic_maps_computed == (factor < 1));
+    BOOST_TEST(h.automatic_maps_kept == (factor < 1));
+    BOOST_TEST((factor < 1 ? h12 == a12 && h21 == a21 : h12 == s.map_12 && h21 == s.map_21));
+    BOOST_TEST(h.passes == (factor < 1 ? c.passes : 0));
+  }
+  // Maps that do not fit the meshes, and negative thresholds, are rejected.
   std::vector<std::size_t> short12(s.map_12.begin(), s.map_12.end() - 1), ok21 = s.map_21;
   BOOST_CHECK_THROW(smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, short12, ok21), smc::Invalid_map_error);
+  std::vector<std::size_t> n12 = s.map_12, n21 = s.map_21;
+  BOOST_CHECK_THROW(smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, n12, n21,
+                                                     params::automatic_maps_comparison_threshold(-0.01)),
+                    smc::Invalid_parameter_error);
 }
 
 BOOST_AUTO_TEST_CASE(landmarks_pull_the_maps_towards_them)

@@ -126,6 +126,7 @@ struct Pair_result
   int distortion_repair_passes = 0;               ///< distortion repair passes kept
   double sample_distortion_before = 0, sample_distortion = 0;
   int automatic_maps_kept = -1;                   ///< --compare-automatic: 1 when the automatic maps replaced the given ones
+  double given_maps_distortion = -1, automatic_maps_distortion = -1;  ///< --compare-automatic (-1: not computed)
   bool refined_as_automatic = false;              ///< automatic maps, or repaired maps of the automatic initialisation
   std::string termination;
   double preprocessing_seconds = 0, initialization_seconds = 0, data_preparation_seconds = 0, trws_seconds = 0,
@@ -141,6 +142,8 @@ struct Pair_result
     sample_distortion_before = init.sample_distortion_before;
     sample_distortion = init.sample_distortion;
     automatic_maps_kept = init.compared_with_automatic_maps ? int(init.automatic_maps_kept) : -1;
+    given_maps_distortion = init.compared_with_automatic_maps ? init.given_maps_distortion : -1;
+    automatic_maps_distortion = init.automatic_maps_computed ? init.automatic_maps_distortion : -1;
   }
 };
 
@@ -326,6 +329,8 @@ int run_bench(int argc, char** argv)
   if(o.data.empty() || o.out.empty()) throw Usage_error("bench needs --data DIR and --out DIR");
   const bool automatic = o.init.empty();
   if(automatic && o.compare_automatic) throw Usage_error("--compare-automatic needs --init (given maps to compare)");
+  if(settings.initialization.automatic_maps_comparison_threshold != 0 && !o.compare_automatic)
+    throw Usage_error("--compare-automatic-above needs --compare-automatic");
   const bool repair_step = o.repair || o.compare_automatic;  // both need the initialisation's data
   check_settings(settings, automatic || repair_step);
   if(o.label.empty()) o.label = o.no_refine ? "no" : settings.refinement.use_coupling ? "coupled" : "non-coupled";
@@ -508,7 +513,7 @@ int run_bench(int argc, char** argv)
            "kept_iterations,termination,preprocessing_seconds,initialization_seconds,data_preparation_seconds,"
            "trws_seconds,refinement_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
            "distortion_repair_passes,sample_distortion_before,sample_distortion,automatic_maps_kept,"
-           "refined_as_automatic\n";
+           "refined_as_automatic,given_maps_distortion,automatic_maps_distortion\n";
     for(const Pair_result& r : results)
     {
       if(!r.ok)
@@ -528,6 +533,7 @@ int run_bench(int argc, char** argv)
         initial.add(x.initial);
         refined.add(x.refined);
         auto sym = [](const Map_quality& q) { return q.has_symmetric ? shortest(q.symmetric.mean) : std::string(""); };
+        auto optional_value = [](double x) { return x < 0 ? std::string("") : shortest(x); };
         csv << r.a << "_" << r.b << "," << (d == 0 ? "12" : "21") << "," << x.source << "," << x.target << ","
             << x.initial.errors.errors.size() << "," << shortest(x.initial.errors.mean) << ","
             << shortest(x.refined.errors.mean) << "," << shortest(x.initial.errors.median) << ","
@@ -545,7 +551,8 @@ int run_bench(int argc, char** argv)
             << "," << shortest(r.torn_fraction) << "," << r.distortion_repair_passes << ","
             << shortest(r.sample_distortion_before) << "," << shortest(r.sample_distortion) << ","
             << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << ","
-            << int(r.refined_as_automatic) << "\n";
+            << int(r.refined_as_automatic) << "," << optional_value(r.given_maps_distortion) << ","
+            << optional_value(r.automatic_maps_distortion) << "\n";
       }
     }
   }

@@ -134,6 +134,9 @@ bool repaired_maps_are_automatic(const smc::Automatic_initialization_result& r)
 
 std::string initialization_summary(const smc::Automatic_initialization_result& r)
 {
+  if(r.compared_with_automatic_maps && !r.automatic_maps_computed)
+    return "the given maps are kept: sample distortion " + fixed(r.given_maps_distortion, 4) +
+           ", within the comparison threshold (no automatic maps computed)";
   if(r.compared_with_automatic_maps)
   {
     const std::string distortions = "sample distortion " + fixed(r.automatic_maps_distortion, 4) +
@@ -228,6 +231,7 @@ void write_initialization(Json_writer& json, const std::string& key, const smc::
       .value("sample_distortion_before", r.sample_distortion_before)
       .value("sample_distortion", r.sample_distortion)
       .value("compared_with_automatic_maps", r.compared_with_automatic_maps)
+      .value("automatic_maps_computed", r.automatic_maps_computed)
       .value("automatic_maps_kept", r.automatic_maps_kept)
       .value("given_maps_distortion", r.given_maps_distortion)
       .value("automatic_maps_distortion", r.automatic_maps_distortion)

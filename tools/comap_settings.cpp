@@ -237,6 +237,12 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
           "they distort distances less (0: none)",
           std::to_string(di.distortion_repair_passes),
           [&in](const std::string& v) { in.distortion_repair_passes = parse_int("--init-distortion-repair", v, 0, 100); });
+  p.value("--compare-automatic-above", "X", "with --compare-automatic: compute and compare the automatic maps "
+          "only when the given maps' sample distortion (after the repair with --repair) is above X (0: always)",
+          shortest(di.automatic_maps_comparison_threshold),
+          [&in](const std::string& v) {
+            in.automatic_maps_comparison_threshold = parse_double("--compare-automatic-above", v);
+          });
   p.value("--init-tear-threshold", "X", "a source edge is torn when its images are this far apart (relative to "
           "sqrt(area) of the target)",
           shortest(di.tear_threshold),
@@ -355,6 +361,7 @@ void write_settings(Json_writer& json, const std::string& key, const Settings& s
         .value("tear_repair_distortion_tolerance", in.tear_repair_distortion_tolerance)
         .value("distortion_repair_passes", in.distortion_repair_passes)
         .value("compare_with_automatic_maps", in.compare_with_automatic_maps)
+        .value("automatic_maps_comparison_threshold", in.automatic_maps_comparison_threshold)
         .end_object();
   }
   json.end_object();

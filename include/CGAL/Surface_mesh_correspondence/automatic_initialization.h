@@ -96,7 +96,11 @@ struct Automatic_initialization_result
   /// the final basis size. When the automatic maps are kept, the other fields describe them (their
   /// own repair passes, torn fractions, functional maps), except the times and `passes`, which
   /// count both the given maps' repair and the automatic initialisation.
+  /// `automatic_maps_computed` is false when the given maps' sample distortion was at most
+  /// `automatic_maps_comparison_threshold`: they were kept without computing the automatic maps
+  /// (`automatic_maps_distortion` is then 0).
   bool compared_with_automatic_maps = false;
+  bool automatic_maps_computed = false;
   bool automatic_maps_kept = false;
   double given_maps_distortion = 0, automatic_maps_distortion = 0;
   /// Passes run in all (fits and ZoomOut: the first one and the repair passes, kept or not).
@@ -227,6 +231,9 @@ struct Initialization_settings
   /// of the pair (automatic_initial_maps() run on the same shapes); the pair of maps whose sample
   /// maps distort geodesic distances less is kept.
   bool compare_with_automatic_maps = false;
+  /// ... only when the given maps' sample distortion is above this (0: always). Maps that preserve
+  /// the sample distances well are kept without the cost of the automatic initialisation.
+  double automatic_maps_comparison_threshold = 0;
   bool verbose = false;
 };
 
@@ -273,6 +280,8 @@ Initialization_settings initialization_settings(const NamedParameters& np)
       get_parameter(np, internal_np::number_of_distortion_repair_passes), s.distortion_repair_passes);
   s.compare_with_automatic_maps = choose_parameter(get_parameter(np, internal_np::compare_with_automatic_maps),
                                                    s.compare_with_automatic_maps);
+  s.automatic_maps_comparison_threshold = choose_parameter(
+      get_parameter(np, internal_np::automatic_maps_comparison_threshold), s.automatic_maps_comparison_threshold);
   s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
   const auto& landmarks = get_parameter(np, internal_np::landmarks);
   if constexpr(!std::is_same<typename std::decay<decltype(landmarks)>::type,
@@ -335,6 +344,9 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.landmark_orientation < -1 || s.landmark_orientation > 1) fail("landmark_orientation must be -1, 0 or 1");
   if(s.tear_repair_passes < 0) fail("tear_repair_passes must be non-negative");
   if(s.distortion_repair_passes < 0) fail("distortion_repair_passes must be non-negative");
+  if(!(s.automatic_maps_comparison_threshold >= 0) || !std::isfinite(s.automatic_maps_comparison_threshold))
+    fail("automatic_maps_comparison_threshold = " + std::to_string(s.automatic_maps_comparison_threshold) +
+         " must be finite and non-negative");
   if(!(s.distortion_core_tolerance > 0) || !std::isfinite(s.distortion_core_tolerance))
     fail("distortion_core_tolerance must be positive");
   if(!(s.distortion_core_agreement > 0) || !(s.distortion_core_agreement <= 1))
@@ -1577,8 +1589,10 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
 /// `map_21` when their sample maps distort geodesic distances less (pair_distortion(), mean of both
 /// directions; ties keep the given maps). Maps computed elsewhere can be wrong as a whole, core
 /// included, which no repair from their own cores undoes (the WKS maps of TOSCA_r michael13 -
-/// michael19: error 0.34, orientation kept on 78% of the triangles). Returns `given`, or
-/// the automatic maps' result, with the comparison's fields and the times of both.
+/// michael19: error 0.34, orientation kept on 78% of the triangles). Given maps whose sample
+/// distortion is at most automatic_maps_comparison_threshold are kept without computing the
+/// automatic maps. Returns `given`, or the automatic maps' result, with the comparison's fields and
+/// the times of both.
 template <typename ConcurrencyTag>
 Automatic_initialization_result compare_given_with_automatic_maps(const Initialization_shape& shape1,
                                                                   const Initialization_shape& shape2,
@@ -1588,11 +1602,21 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
                                                                   std::vector<std::size_t>& map_21,
                                                                   const Automatic_initialization_result& given)
 {
+  prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, cache);
+  const double given_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21);
+  if(given_distortion <= s.automatic_maps_comparison_threshold)
+  {
+    if(s.verbose)
+      std::cerr << "repair_torn_maps: sample distortion of the given maps " << given_distortion << " <= "
+                << s.automatic_maps_comparison_threshold << ": kept without the automatic maps\n";
+    Automatic_initialization_result r = given;
+    r.compared_with_automatic_maps = true;
+    r.given_maps_distortion = given_distortion;
+    return r;
+  }
   std::vector<std::size_t> a12, a21;
   Automatic_initialization_result automatic =
       automatic_initial_maps<ConcurrencyTag>(shape1, shape2, s, a12, a21, &cache);
-  prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, cache);
-  const double given_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21);
   const double automatic_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, a12, a21);
   const bool keep_automatic = automatic_distortion < given_distortion;
   if(s.verbose)
@@ -1610,6 +1634,7 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
   r.zoomout_seconds = given.zoomout_seconds + automatic.zoomout_seconds;
   r.passes = given.passes + automatic.passes;
   r.compared_with_automatic_maps = true;
+  r.automatic_maps_computed = true;
   r.automatic_maps_kept = keep_automatic;
   r.given_maps_distortion = given_distortion;
   r.automatic_maps_distortion = automatic_distortion;
@@ -1924,15 +1949,18 @@ Automatic_initialization_result repair_torn_maps(const TriangleMesh1& tm1, const
 /// keep the given maps). The given maps are not repaired (repair_torn_maps() with
 /// `compare_with_automatic_maps(true)` repairs them first). A safety net for maps that may be
 /// wrong as a whole (symmetry flips, a body turned by 180 degrees), which no local refinement
-/// undoes; it costs one automatic initialisation. Sample distortion is not accuracy: on a pair
+/// undoes; it costs one automatic initialisation, unless `automatic_maps_comparison_threshold(x)`
+/// keeps given maps whose sample distortion is at most x without computing the automatic maps
+/// (`automatic_maps_computed` false). Sample distortion is not accuracy: on a pair
 /// whose deformation stretches the surface, exact maps can distort more than slightly less
 /// accurate automatic maps, which then replace them.
 ///
 /// \param map_12, map_21 input and output, as for repair_torn_maps()
 /// \param np the named parameters of automatic_initial_maps()
 /// \returns the result of the automatic maps when they replaced the given ones, else a result
-///   describing the given maps; in both, `compared_with_automatic_maps`, `automatic_maps_kept`,
-///   `given_maps_distortion`, `automatic_maps_distortion` and the times of the whole comparison
+///   describing the given maps; in both, `compared_with_automatic_maps`, `automatic_maps_computed`,
+///   `automatic_maps_kept`, `given_maps_distortion`, `automatic_maps_distortion` and the times of
+///   the whole comparison
 /// \throws Invalid_map_error for maps of the wrong size or with entries out of range, and the
 ///   exceptions of automatic_initial_maps()
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename TriangleMesh2,

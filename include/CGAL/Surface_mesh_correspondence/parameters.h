@@ -89,7 +89,9 @@ namespace Surface_mesh_correspondence {
     tear_repair_distortion_tolerance)                                                    \
   X(number_of_distortion_repair_passes_t, number_of_distortion_repair_passes,            \
     number_of_distortion_repair_passes)                                                  \
-  X(compare_with_automatic_maps_t, compare_with_automatic_maps, compare_with_automatic_maps)
+  X(compare_with_automatic_maps_t, compare_with_automatic_maps, compare_with_automatic_maps) \
+  X(automatic_maps_comparison_threshold_t, automatic_maps_comparison_threshold,          \
+    automatic_maps_comparison_threshold)
 
 namespace internal_np {
 #define CGAL_SMC_DECLARE_TAG(X, Y, Z) enum X { Y };
