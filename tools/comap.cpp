@@ -143,8 +143,6 @@ int match(int argc, char** argv)
     throw Usage_error("--landmarks guides the automatic initialisation: do not combine it with --init-12/--init-21");
   if(automatic && compare)
     throw Usage_error("--compare-automatic compares given maps (--init-12/--init-21) with the automatic ones");
-  if(settings.initialization.automatic_maps_comparison_threshold != 0 && !compare)
-    throw Usage_error("--compare-automatic-above needs --compare-automatic");
   const bool repair_step = repair || compare;  // both need the initialisation's data
   check_settings(settings, automatic || repair_step);
   check_writable(out_12);

@@ -329,8 +329,6 @@ int run_bench(int argc, char** argv)
   if(o.data.empty() || o.out.empty()) throw Usage_error("bench needs --data DIR and --out DIR");
   const bool automatic = o.init.empty();
   if(automatic && o.compare_automatic) throw Usage_error("--compare-automatic needs --init (given maps to compare)");
-  if(settings.initialization.automatic_maps_comparison_threshold != 0 && !o.compare_automatic)
-    throw Usage_error("--compare-automatic-above needs --compare-automatic");
   const bool repair_step = o.repair || o.compare_automatic;  // both need the initialisation's data
   check_settings(settings, automatic || repair_step);
   if(o.label.empty()) o.label = o.no_refine ? "no" : settings.refinement.use_coupling ? "coupled" : "non-coupled";

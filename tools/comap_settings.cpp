@@ -263,6 +263,9 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
 
 void check_settings(const Settings& s, bool with_initialization)
 {
+  // --compare-automatic sets compare_with_automatic_maps, in match and bench alike.
+  if(s.initialization.automatic_maps_comparison_threshold != 0 && !s.initialization.compare_with_automatic_maps)
+    throw Usage_error("--compare-automatic-above needs --compare-automatic");
   try
   {
     s.refinement.check();
