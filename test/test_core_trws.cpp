@@ -19,13 +19,9 @@
 namespace smc = CGAL::Surface_mesh_correspondence;
 namespace params = CGAL::Surface_mesh_correspondence::parameters;
 using trws_test::Problem;
+using trws_test::close;
 
 namespace {
-
-bool close(double a, double b, double rel = 1e-9)
-{
-  return std::abs(a - b) <= rel * std::max(1.0, std::max(std::abs(a), std::abs(b)));
-}
 
 // Solves p with tables in double precision and checks the result against the exact optimum.
 void check_exact(const Problem& p, double optimum, const std::string& what)

@@ -32,6 +32,7 @@
 
 namespace smc = CGAL::Surface_mesh_correspondence;
 namespace params = CGAL::Surface_mesh_correspondence::parameters;
+using trws_test::close;
 
 namespace {
 
@@ -44,11 +45,6 @@ typedef boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boos
                               Edge_data>
     Graph;
 typedef boost::graph_traits<Graph>::edge_descriptor Graph_edge;
-
-bool close(double a, double b, double rel = 1e-9)
-{
-  return std::abs(a - b) <= rel * std::max(1.0, std::max(std::abs(a), std::abs(b)));
-}
 
 template <typename Vector>
 auto index_map(Vector& v, const Graph& g)

@@ -42,6 +42,12 @@ struct Problem
   }
 };
 
+/// Whether a and b agree to the relative tolerance `rel` (absolute below 1).
+inline bool close(double a, double b, double rel = 1e-9)
+{
+  return std::abs(a - b) <= rel * std::max(1.0, std::max(std::abs(a), std::abs(b)));
+}
+
 inline void random_costs(Problem& p, std::mt19937& rng, double pairwise_scale = 1.0)
 {
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -25,8 +25,6 @@ using namespace smc_test;
 
 namespace {
 
-const double inf = std::numeric_limits<double>::infinity();
-
 struct Errors
 {
   double mean = 0, max = 0;

@@ -26,8 +26,6 @@ using namespace smc_test;
 
 namespace {
 
-const double inf = std::numeric_limits<double>::infinity();
-
 // Brute-force hop distance from a set of seeds: Bellman-Ford style relaxation over the edge list.
 std::vector<int> hop_distance(const smci::Indexed_mesh& m, const std::vector<int>& seeds)
 {

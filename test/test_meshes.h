@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,7 @@ typedef CGAL::Surface_mesh<Point> Mesh;
 typedef Mesh::Vertex_index Vertex;
 
 inline const double pi = 3.14159265358979323846;
+inline const double inf = std::numeric_limits<double>::infinity();
 
 /// Builds a Surface_mesh from a triangle soup (consistently oriented).
 inline Mesh mesh_from_soup(const std::vector<Point>& points,

@@ -29,7 +29,6 @@ namespace comap {
 
 namespace {
 
-const double pi = 3.14159265358979323846;
 const char* const cgal_demo_data = "/usr/share/doc/libcgal-demo/data.tar.gz";
 
 double smoothstep(double t)

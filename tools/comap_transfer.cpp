@@ -22,8 +22,6 @@ namespace smc = CGAL::Surface_mesh_correspondence;
 
 namespace {
 
-const double pi = 3.14159265358979323846;
-
 struct Box
 {
   std::array<double, 3> lo{{0, 0, 0}}, hi{{0, 0, 0}};
