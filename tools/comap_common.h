@@ -24,8 +24,6 @@
 
 namespace comap {
 
-constexpr double pi = 3.14159265358979323846;
-
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef Kernel::Point_3 Point;
 typedef CGAL::Surface_mesh<Point> Mesh;

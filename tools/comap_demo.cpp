@@ -51,7 +51,7 @@ Point pose_homer(const Point& p)
   if(arm > 0)
   {
     const double jx = x < 0 ? -0.15 : 0.15, jy = 0.07;
-    const double angle = arm * (x < 0 ? 30.0 : 15.0) * pi / 180;  // counter-clockwise: left down, right up
+    const double angle = arm * (x < 0 ? 30.0 : 15.0) * CGAL_PI / 180;  // counter-clockwise: left down, right up
     const double dx = x - jx, dy = y - jy, c = std::cos(angle), s = std::sin(angle);
     x = jx + c * dx - s * dy;
     y = jy + s * dx + c * dy;
@@ -59,7 +59,7 @@ Point pose_homer(const Point& p)
   const double head = smoothstep((y - 0.14) / 0.20) * (1.0 - smoothstep((std::abs(p.x()) - 0.12) / 0.02));
   if(head > 0)
   {
-    const double angle = head * 20.0 * pi / 180, c = std::cos(angle), s = std::sin(angle);
+    const double angle = head * 20.0 * CGAL_PI / 180, c = std::cos(angle), s = std::sin(angle);
     const double cz = -0.02;
     const double dx = x, dz = z - cz;
     x = c * dx + s * dz;
@@ -83,20 +83,20 @@ Mesh bumpy_capsule()
   std::vector<std::pair<double, double> > profile;  // (radius, z)
   for(int i = 1; i <= n_cap; ++i)
   {
-    const double t = -pi / 2 + (pi / 2) * i / n_cap;
+    const double t = -CGAL_PI / 2 + (CGAL_PI / 2) * i / n_cap;
     profile.emplace_back(std::cos(t), -length / 2 + std::sin(t));
   }
   for(int i = 1; i < n_body; ++i) profile.emplace_back(1.0, -length / 2 + length * i / n_body);
   for(int i = 0; i < n_cap; ++i)
   {
-    const double t = (pi / 2) * i / n_cap;
+    const double t = (CGAL_PI / 2) * i / n_cap;
     profile.emplace_back(std::cos(t), length / 2 + std::sin(t));
   }
   const Mesh::Vertex_index south = m.add_vertex(Point(0, 0, -length / 2 - 1));
   for(std::size_t r = 0; r < profile.size(); ++r)
     for(int i = 0; i < nu; ++i)
     {
-      const double a = 2 * pi * (i + 0.5 * (r % 2)) / nu, z = profile[r].second;
+      const double a = 2 * CGAL_PI * (i + 0.5 * (r % 2)) / nu, z = profile[r].second;
       const double rad = profile[r].first * bump(a, z);
       ring_vertices.push_back(m.add_vertex(Point(rad * std::cos(a), rad * std::sin(a), z)));
     }
@@ -127,7 +127,7 @@ Mesh bumpy_capsule()
 /// Bends the capsule by 60 degrees in the x-z plane (radius of curvature 4 / (pi / 3)).
 Point bend_capsule(const Point& p)
 {
-  const double angle = pi / 3, length = 4.0, radius = length / angle;
+  const double angle = CGAL_PI / 3, length = 4.0, radius = length / angle;
   const double t = std::min(std::max(p.z(), -length / 2), length / 2);  // caps move rigidly
   const double theta = t / radius, rest = p.z() - t;
   const double r = radius + p.x();

@@ -60,7 +60,7 @@ std::vector<Color> coordinate_colors(const Mesh& mesh)
   {
     const Point& p = mesh.point(v);
     const double c[3] = {p.x(), p.y(), p.z()};
-    const double band = 0.8 + 0.2 * std::sin(2 * pi * 6 * (c[b.longest] - b.lo[b.longest]) / extent);
+    const double band = 0.8 + 0.2 * std::sin(2 * CGAL_PI * 6 * (c[b.longest] - b.lo[b.longest]) / extent);
     Color& out = colors[v.idx()];
     for(int a = 0; a < 3; ++a) out[a] = (0.1 + 0.8 * (c[a] - b.lo[a]) / b.size(a)) * band;
   }
@@ -133,7 +133,7 @@ std::vector<Color> texture_colors(const Mesh& mesh, const Texture& texture)
   {
     const Point& p = mesh.point(v);
     const double c[3] = {p.x(), p.y(), p.z()};
-    const double u = (std::atan2(c[b2] - c2, c[b1] - c1) + pi) / (2 * pi);
+    const double u = (std::atan2(c[b2] - c2, c[b1] - c1) + CGAL_PI) / (2 * CGAL_PI);
     const double t = (c[a] - b.lo[a]) / b.size(a);
     colors[v.idx()] = texture.sample(u, t);
   }
