@@ -14,6 +14,9 @@
 //    (one iteration = 2 |E| m^2 min-plus operations).
 // 2. The min-plus kernels alone on the same tables: multi-versioned SIMD vs portable loops.
 // 3. A 256 x 256 grid, 16 labels, truncated linear costs (image restoration).
+// 4. Trws_solver<float, CGAL::Parallel_tag> against Trws_solver<float> on the breadth-first
+//    numbered mesh MRF (the numbering of the refinement), float tables, 15 iterations as in the
+//    refinement of automatic maps: wall-clock time (best of 5) and whether the runs are identical.
 //
 // Usage: bench_trws [number_of_vertices (5000)] [iterations timed (30)] [labels (10,20,30,40)]
 
@@ -21,7 +24,12 @@
 
 #include <CGAL/Surface_mesh_correspondence/trws.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/task_arena.h>
+#endif
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -317,6 +325,55 @@ void grid_run(Report& report, int size, std::size_t labels, bool tables,
               Report::num(run.peak_mib, 1), Report::num(run.model_mib, 1)});
 }
 
+#ifdef CGAL_LINKED_WITH_TBB
+// Wall-clock time of 15 TRW-S iterations with Trws_solver<float, Tag> (best of 5), and the run.
+template <typename Tag>
+double parallel_row_ms(const smc::Discrete_energy<float>& energy, std::vector<int>& labels, smc::Trws_result& result)
+{
+  double best = 1e300;
+  for(int rep = 0; rep < 5; ++rep)
+  {
+    smc::Trws_solver<float, Tag> solver;
+    const auto start = std::chrono::steady_clock::now();
+    result = solver.solve(energy, labels, params::relative_tolerance(0.0).number_of_iterations(15));
+    best = std::min(best, 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
+
+void parallel_rows(const Mrf_shape& shape)
+{
+  Report report({"labels", "nodes", "threads", "sequential_ms", "parallel_ms", "speedup", "identical"});
+  for(std::size_t m : {20, 40})
+  {
+    std::mt19937 rng{static_cast<unsigned>(m)};
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<float> values(shape.n * m);
+    for(float& v : values) v = u(rng);
+    smc::Discrete_energy<float> energy(std::vector<std::size_t>(shape.n, m), shape.edges);
+    for(std::size_t i = 0; i < shape.n; ++i)
+      for(std::size_t k = 0; k < m; ++k) energy.unary_costs(i)[k] = 0.5f * u(rng);
+    for(std::size_t e = 0; e < shape.edges.size(); ++e)
+    {
+      float* table = energy.pairwise_costs(e);
+      const std::size_t s = shape.edges[e].first, t = shape.edges[e].second;
+      for(std::size_t k = 0; k < m; ++k)
+        for(std::size_t l = 0; l < m; ++l) table[k * m + l] = std::abs(values[s * m + k] - values[t * m + l]);
+    }
+    std::vector<int> a, b;
+    smc::Trws_result ra, rb;
+    const double sequential = parallel_row_ms<CGAL::Sequential_tag>(energy, a, ra);
+    const double parallel = parallel_row_ms<CGAL::Parallel_tag>(energy, b, rb);
+    const bool identical = a == b && ra.energy == rb.energy && ra.lower_bound == rb.lower_bound;
+    report.add({std::to_string(m), std::to_string(shape.n),
+                std::to_string(tbb::this_task_arena::max_concurrency()), Report::num(sequential, 1),
+                Report::num(parallel, 1), Report::num(sequential / parallel, 2), identical ? "yes" : "NO"});
+  }
+  std::cout << "\n== parallel passes: 15 iterations, float tables, breadth-first nodes, wall clock, best of 5\n";
+  report.print();
+}
+#endif
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -400,5 +457,8 @@ int main(int argc, char** argv)
       << "\n== min-plus kernels alone, one iteration's work (2 |E| m^2) on tables read in order,"
       << " best of 5, thread CPU time\n";
   kernels.print();
+#ifdef CGAL_LINKED_WITH_TBB
+  parallel_rows(breadth_first);
+#endif
   return EXIT_SUCCESS;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // TRW-S on the flat Discrete_energy: exact optima on chains, stars and trees (dynamic programming),
 // bounds on small loopy graphs (brute force), monotone lower bound, visitor, float vs double,
-// functor vs tables, reuse, initial labeling, and every rejected input.
+// functor vs tables, reuse, initial labeling, the parallel passes (the sequential result, bit for
+// bit), and every rejected input.
 
 #include "test_core_trws_helpers.h"
 
@@ -9,6 +10,11 @@
 
 #include <boost/test/unit_test.hpp>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/task_arena.h>
+#endif
+
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -313,6 +319,123 @@ BOOST_AUTO_TEST_CASE(deterministic_float_double_functor_tables)
   BOOST_TEST(std::abs(rd.lower_bound - ra.lower_bound) <= 1e-3 * std::abs(ra.lower_bound));
   BOOST_TEST(close(p.energy(d), rd.energy, 1e-6));
 }
+
+#ifdef CGAL_LINKED_WITH_TBB
+namespace {
+
+// A run of Trws_solver<FT, Tag> on `energy` in an arena of `threads` threads: its labeling,
+// result and the bound of every iteration.
+struct Recorded_run
+{
+  std::vector<int> labels;
+  smc::Trws_result result;
+  std::vector<double> bounds;
+};
+
+template <typename FT, typename Tag, typename Energy>
+Recorded_run recorded_run(smc::Trws_solver<FT, Tag>& solver, const Energy& energy, int threads)
+{
+  Recorded_run run;
+  auto record = [&run](std::size_t, double, double bound) {
+    run.bounds.push_back(bound);
+    return true;
+  };
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    run.result = solver.solve(energy, run.labels,
+                              params::relative_tolerance(0.0).number_of_iterations(30).visitor(record));
+  });
+  return run;
+}
+
+void check_same_run(const Recorded_run& a, const Recorded_run& b, const std::string& what)
+{
+  BOOST_TEST_CONTEXT(what)
+  {
+    BOOST_TEST(a.labels == b.labels);
+    BOOST_TEST(a.result.energy == b.result.energy); // bit for bit
+    BOOST_TEST(a.result.lower_bound == b.result.lower_bound);
+    BOOST_TEST(a.result.number_of_iterations == b.result.number_of_iterations);
+    BOOST_TEST(a.bounds == b.bounds, boost::test_tools::per_element());
+  }
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(parallel_passes_give_the_sequential_result)
+{
+  // Triangulated grids above Trws_solver::minimum_parallel_nodes, numbered by rows (about
+  // 2 w levels), randomly (few wide levels) and column by column in a snake (almost a chain:
+  // each node waits for the previous one); random label counts and costs. The parallel passes must
+  // reproduce the sequential run exactly: a node updated before one of its neighbours, or
+  // two neighbours updated at once, changes the messages and hence the bounds.
+  std::mt19937 rng(21);
+  const int w = 36, n = w * w;
+  static_assert(36 * 36 >= int(smc::Trws_solver<float, CGAL::Parallel_tag>::minimum_parallel_nodes),
+                "the grid must be solved in parallel");
+  for(int numbering = 0; numbering < 3; ++numbering)
+  {
+    std::vector<int> id(n);
+    for(int i = 0; i < n; ++i) id[i] = i;
+    if(numbering == 1) std::shuffle(id.begin(), id.end(), rng);
+    if(numbering == 2)
+      for(int y = 0; y < w; ++y)
+        for(int x = 0; x < w; ++x) id[y * w + x] = x * w + (x % 2 ? w - 1 - y : y);
+    Problem p;
+    p.labels = trws_test::random_label_counts(std::size_t(n), 14, rng);
+    for(int y = 0; y < w; ++y)
+      for(int x = 0; x < w; ++x)
+      {
+        const int v = id[y * w + x];
+        if(x + 1 < w) p.edges.emplace_back(v, id[y * w + x + 1]);
+        if(y + 1 < w) p.edges.emplace_back(id[(y + 1) * w + x], v);
+        if(x + 1 < w && y + 1 < w) p.edges.emplace_back(v, id[(y + 1) * w + x + 1]);
+      }
+    trws_test::random_costs(p, rng, 1.5);
+    const std::string what = "numbering " + std::to_string(numbering);
+
+    const smc::Discrete_energy<float> energy = trws_test::make_energy<float>(p);
+    smc::Trws_solver<float> sequential;
+    const Recorded_run reference = recorded_run(sequential, energy, 1);
+    BOOST_TEST(reference.bounds.size() == 30u);
+    smc::Trws_solver<float, CGAL::Parallel_tag> parallel;
+    for(int threads : {2, 4})
+      check_same_run(reference, recorded_run(parallel, energy, threads),
+                     what + ", float, " + std::to_string(threads) + " threads");
+    // One thread: the sequential passes of the parallel solver.
+    check_same_run(reference, recorded_run(parallel, energy, 1), what + ", float, 1 thread");
+
+    const smc::Discrete_energy<double> energy_d = trws_test::make_energy<double>(p);
+    smc::Trws_solver<double> sequential_d;
+    smc::Trws_solver<double, CGAL::Parallel_tag> parallel_d;
+    check_same_run(recorded_run(sequential_d, energy_d, 1), recorded_run(parallel_d, energy_d, 2),
+                   what + ", double, 2 threads");
+  }
+
+  // Reuse on an energy of another size, a small energy (sequential passes) and a functor energy
+  // (sequential passes): still the sequential result.
+  smc::Trws_solver<float, CGAL::Parallel_tag> parallel;
+  for(int size : {40, 12})
+  {
+    Problem p;
+    p.labels = trws_test::random_label_counts(std::size_t(size * size), 9, rng);
+    for(int y = 0; y < size; ++y)
+      for(int x = 0; x < size; ++x)
+      {
+        if(x + 1 < size) p.edges.emplace_back(y * size + x, y * size + x + 1);
+        if(y + 1 < size) p.edges.emplace_back(y * size + x, (y + 1) * size + x);
+      }
+    trws_test::random_costs(p, rng);
+    smc::Trws_solver<float> sequential;
+    const Recorded_run reference = recorded_run(sequential, trws_test::make_energy<float>(p), 1);
+    check_same_run(reference, recorded_run(parallel, trws_test::make_energy<float>(p), 2),
+                   "reused solver, " + std::to_string(size) + " x " + std::to_string(size) + " grid");
+    smc::Trws_solver<float, CGAL::Parallel_tag> functor_solver;
+    check_same_run(reference, recorded_run(functor_solver, trws_test::make_functor_energy<float>(p), 2),
+                   "functor costs, " + std::to_string(size) + " x " + std::to_string(size) + " grid");
+  }
+}
+#endif
 
 BOOST_AUTO_TEST_CASE(solver_reuse_and_modification)
 {

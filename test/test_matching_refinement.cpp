@@ -84,7 +84,7 @@ BOOST_AUTO_TEST_CASE(candidate_sets_and_energy_terms)
   smc::Refinement_settings settings;
   settings.number_of_candidates = 12;
   settings.use_neighbor_matches = false;
-  smc::internal::Refinement_workspace w;
+  smc::internal::Refinement_workspace<CGAL::Sequential_tag> w;
   smc::internal::select_candidates<CGAL::Sequential_tag>(S, T, x, xt, 3, settings, w.candidates);
   const auto& C = w.candidates;
   BOOST_TEST(C.offsets.size() == static_cast<std::size_t>(n) + 1);

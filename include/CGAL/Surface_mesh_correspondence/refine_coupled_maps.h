@@ -269,11 +269,13 @@ inline std::vector<int> inverse_map(const Shape_data& source, const Shape_data& 
   return result;
 }
 
-/// Solver state reused between solves (energy storage, TRW-S messages).
+/// Solver state reused between solves (energy storage, TRW-S messages). With Parallel_tag the
+/// TRW-S passes use every thread of the arena (same result as sequentially, see Trws_solver).
+template <typename ConcurrencyTag>
 struct Refinement_workspace
 {
   Discrete_energy<float> energy;
-  Trws_solver<float> solver;
+  Trws_solver<float, ConcurrencyTag> solver;
   Candidate_sets candidates;
   std::vector<std::pair<int, int> > edges;  ///< MRF edges (node pairs u < v) of the current source, sorted
   std::vector<std::size_t> first_edge;      ///< node u -> its first edge (u, v); size n + 1
@@ -344,7 +346,7 @@ void select_candidates(const Shape_data& S, const Shape_data& T, const std::vect
 /// |d_S(i, j) - d_T(k, l)| (Eq. 3), with distances in units of sqrt(area) of each shape.
 template <typename ConcurrencyTag>
 void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<int>& opposite,
-                  const Refinement_settings& settings, Refinement_workspace& w)
+                  const Refinement_settings& settings, Refinement_workspace<ConcurrencyTag>& w)
 {
   const int n = S.number_of_vertices();
   const Candidate_sets& C = w.candidates;
@@ -479,7 +481,7 @@ void build_energy(const Shape_data& S, const Shape_data& T, const std::vector<in
 template <typename ConcurrencyTag, typename Visitor>
 Refinement_step solve_direction(const Shape_data& S, const Shape_data& T, std::vector<int>& x,
                                 const std::vector<int>& x_inverse, const std::vector<int>& opposite, int rings,
-                                const Refinement_settings& settings, int direction, Refinement_workspace& w,
+                                const Refinement_settings& settings, int direction, Refinement_workspace<ConcurrencyTag>& w,
                                 Visitor& visitor)
 {
   Refinement_step step;
@@ -545,7 +547,7 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
   std::size_t best_c = result.inconsistent_vertices_before;
   bool have_best = settings.keep_consistent_input_maps;
   std::vector<int> best12 = x12, best21 = x21;
-  Refinement_workspace w12, w21;
+  Refinement_workspace<ConcurrencyTag> w12, w21;
   bool stop = false;
   for(int t = 0; t < settings.outer_iterations() && !stop; ++t)
   {
@@ -554,7 +556,7 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
     // One MRF solve for the map a -> b, using the inverse of the current map b -> a; returns
     // whether the visitor lets the refinement go on.
     auto solve = [&](const Shape_data& A, const Shape_data& B, std::vector<int>& x_ab, const std::vector<int>& x_ba,
-                     int direction, Refinement_workspace& w) {
+                     int direction, Refinement_workspace<ConcurrencyTag>& w) {
       const std::vector<int> inverse = inverse_map(A, B, x_ba, x_ab);
       Refinement_step step = solve_direction<ConcurrencyTag>(A, B, x_ab, inverse, x_ba, r, settings, direction, w, visitor);
       step.outer_iteration = t;

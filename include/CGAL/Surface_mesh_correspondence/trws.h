@@ -20,6 +20,7 @@
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/internal/trws_energy_base.h>
 #include <CGAL/Surface_mesh_correspondence/internal/trws_kernels.h>
+#include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -34,12 +35,15 @@
 #include <boost/range/size.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <ostream>
+#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -297,7 +301,7 @@ public:
   }
 
 private:
-  template <typename>
+  template <typename, typename>
   friend class Trws_solver;
 
   std::vector<std::size_t> table_offsets_;
@@ -391,10 +395,29 @@ double Discrete_energy<FT, Dense_pairwise_tables>::energy(const LabelRange& labe
 /// and the best labeling seen is kept (never worse than the initial labeling, if given).
 ///
 /// \tparam FT `float` or `double`: type of the messages (and of the energy's costs).
-template <typename FT = double>
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (default) or `CGAL::Parallel_tag` (requires TBB).
+///   With `Parallel_tag`, energies with stored tables (`Discrete_energy<FT>`) of at least
+///   `minimum_parallel_nodes` nodes are solved by all the threads of the current TBB arena, with
+///   exactly the same result as sequentially (see below); other energies are solved sequentially.
+///
+/// **Parallel passes.** In a forward pass, node s reads only the messages of its earlier
+/// neighbours (sent in this pass), the messages of its later neighbours (sent in the previous
+/// backward pass, not changed by this one) and its own costs, and it writes only the messages to
+/// its later neighbours. So two nodes can be processed at once when neither is an earlier neighbour
+/// of the other: the nodes are grouped in levels (a node's level is one more than the highest level
+/// of its earlier neighbours), and the threads take them level by level, each node waiting for its
+/// earlier neighbours only. The backward pass is the mirror image. Every node computes exactly what
+/// it computes in the sequential pass, and the bound and labeling energy are summed in the node
+/// order afterwards, so the labeling, the energy and the bound are identical bit for bit (on
+/// 5000-vertex meshes numbered breadth-first, about 150 levels of about 30 nodes).
+template <typename FT = double, typename ConcurrencyTag = CGAL::Sequential_tag>
 class Trws_solver
 {
 public:
+  /// Energies with fewer nodes are solved sequentially even with `Parallel_tag` (the threads'
+  /// start and synchronisation would cost more than they save).
+  static constexpr std::size_t minimum_parallel_nodes = 1000;
+
   /// Minimises `energy` and writes the best labeling found into `labeling` (resized to the number
   /// of nodes).
   ///
@@ -431,11 +454,15 @@ public:
   /// Bytes of memory held by the solver's workspace.
   std::size_t memory_bytes() const
   {
+    std::size_t scratch = 0;
+    for(const Scratch& w : scratch_)
+      scratch += (w.theta.capacity() + w.costs.capacity() + w.shifted.capacity() + w.table.capacity()) * sizeof(FT);
     return (messages_.capacity() + conditional_.capacity()) * sizeof(FT) +
            links_.capacity() * sizeof(Link) + (node_data_.capacity()) * sizeof(Node_data) +
            (labels_.capacity() + best_labels_.capacity()) * sizeof(std::uint32_t) +
-           (theta_.capacity() + label_costs_.capacity() + shifted_.capacity() + table_.capacity()) *
-               sizeof(FT);
+           (node_energy_.capacity() + node_bound_.capacity() + link_bound_.capacity()) * sizeof(double) +
+           (forward_order_.capacity() + backward_order_.capacity()) * sizeof(std::uint32_t) +
+           done_size_ * sizeof(std::atomic<std::uint32_t>) + scratch;
   }
 
 private:
@@ -457,14 +484,27 @@ private:
     FT gamma;                                        // 1 / n_s
     double bound_weight;                             // (n_s - #later neighbours) / n_s
   };
+  // Per-thread work arrays of one node's update (K values each; `table` for functor costs).
+  struct Scratch
+  {
+    std::vector<FT> theta, costs, shifted, table;
+  };
 
   template <typename PairwiseCost>
   void prepare(const Discrete_energy<FT, PairwiseCost>& energy);
 
-  // The table of link L of node s, as stored or as computed into table_.
+  // Whether the passes of `energy` run on several threads (see the class comment).
+  template <typename PairwiseCost>
+  bool runs_in_parallel(const Discrete_energy<FT, PairwiseCost>& energy) const;
+
+  // The levels of the parallel passes: forward_order_ and backward_order_ list the nodes level by
+  // level.
+  void prepare_levels(std::size_t n);
+
+  // The table of link L of node s, as stored or as computed into w.table.
   template <typename PairwiseCost>
   const FT* edge_table(const Discrete_energy<FT, PairwiseCost>& energy, const Link& L,
-                       std::size_t ks, bool check);
+                       std::size_t ks, bool check, Scratch& w);
 
   // Forward pass: messages to later neighbours, labeling, bound. Returns the bound; the energy of
   // the labeling goes to `labeling_energy`.
@@ -473,6 +513,20 @@ private:
                       double& labeling_energy);
   template <typename PairwiseCost>
   void backward_pass(const Discrete_energy<FT, PairwiseCost>& energy);
+
+  // The forward update of node s: its label, its share of the labeling energy (node_energy_[s])
+  // and of the bound (node_bound_[s], and link_bound_ for the messages it sends).
+  template <typename PairwiseCost>
+  void forward_node(const Discrete_energy<FT, PairwiseCost>& energy, std::size_t s, bool check, Scratch& w);
+  // The backward update of node s: its messages to its earlier neighbours.
+  template <typename PairwiseCost>
+  void backward_node(const Discrete_energy<FT, PairwiseCost>& energy, std::size_t s, Scratch& w);
+
+  // Calls update(s, scratch) for every node of `order` on the threads of the arena, each node after
+  // its earlier (forward) or later (backward) neighbours.
+  template <typename Update, typename Prefetch>
+  void parallel_pass(const std::vector<std::uint32_t>& order, bool forward, const Update& update,
+                     const Prefetch& prefetch);
 
   // Asks the memory system for the tables that node s reads in the pass: the tables are read in
   // the order of the nodes, not of their storage, so the hardware prefetchers cannot guess the
@@ -484,19 +538,39 @@ private:
                                             std::size_t s, bool forward) const;
 
   // Sends the message from node s along link L; returns the normalisation constant c_st.
-  FT send(const FT* theta, FT gamma, std::size_t ks, const Link& L, const FT* table);
+  FT send(const FT* theta, FT gamma, std::size_t ks, const Link& L, const FT* table, Scratch& w);
 
   std::vector<FT> messages_;    // per edge: M_ts (K_s values) then M_st (K_t values)
   std::vector<FT> conditional_; // same layout: theta_st(x_s, .) left by the earlier end s
   std::vector<Link> links_;
   std::vector<Node_data> node_data_;
   std::vector<std::uint32_t> labels_, best_labels_;
-  std::vector<FT> theta_, label_costs_, shifted_, table_;
+  std::vector<double> node_energy_, node_bound_, link_bound_;
+  std::vector<Scratch> scratch_; // one per thread (one sequentially)
+  // Parallel passes: the nodes level by level, and the pass in which each node was last updated.
+  std::vector<std::uint32_t> forward_order_, backward_order_;
+  std::unique_ptr<std::atomic<std::uint32_t>[]> done_;
+  std::size_t done_size_ = 0;
+  std::uint32_t pass_ = 0;
 };
 
-template <typename FT>
+template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost>
-void Trws_solver<FT>::prepare(const Discrete_energy<FT, PairwiseCost>& energy)
+bool Trws_solver<FT, ConcurrencyTag>::runs_in_parallel(const Discrete_energy<FT, PairwiseCost>& energy) const
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  return internal::Is_parallel<ConcurrencyTag>::value && Discrete_energy<FT, PairwiseCost>::has_tables &&
+         energy.number_of_nodes() >= minimum_parallel_nodes && tbb::this_task_arena::max_concurrency() > 1;
+#else
+  (void)energy;
+  (void)internal::Is_parallel<ConcurrencyTag>::value;
+  return false;
+#endif
+}
+
+template <typename FT, typename ConcurrencyTag>
+template <typename PairwiseCost>
+void Trws_solver<FT, ConcurrencyTag>::prepare(const Discrete_energy<FT, PairwiseCost>& energy)
 {
   const internal::Discrete_energy_base<FT>& base = energy;
   const std::size_t n = base.number_of_nodes(), m = base.number_of_edges();
@@ -538,23 +612,79 @@ void Trws_solver<FT>::prepare(const Discrete_energy<FT, PairwiseCost>& energy)
     d.gamma = FT(1) / FT(chains);
     d.bound_weight = double(chains - later) / double(chains);
   }
+  node_energy_.assign(n, 0.0);
+  node_bound_.assign(n, 0.0);
+  link_bound_.assign(2 * m, 0.0);
+  std::size_t threads = 1;
+  if(runs_in_parallel(energy))
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    threads = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+#endif
+    prepare_levels(n);
+  }
   const std::size_t k = base.maximum_number_of_labels();
-  theta_.resize(k);
-  label_costs_.resize(k);
-  shifted_.resize(k);
-  if constexpr(!Discrete_energy<FT, PairwiseCost>::has_tables) table_.resize(k * k);
+  scratch_.resize(threads);
+  for(Scratch& w : scratch_)
+  {
+    w.theta.resize(k);
+    w.costs.resize(k);
+    w.shifted.resize(k);
+    if constexpr(!Discrete_energy<FT, PairwiseCost>::has_tables) w.table.resize(k * k);
+  }
   labels_.assign(n, 0);
 }
 
-template <typename FT>
+template <typename FT, typename ConcurrencyTag>
+void Trws_solver<FT, ConcurrencyTag>::prepare_levels(std::size_t n)
+{
+  // Level of a node: 0 without earlier (forward) or later (backward) neighbours, else one more
+  // than the highest level among them; then a counting sort by level.
+  auto order_by_levels = [&](bool forward, std::vector<std::uint32_t>& order) {
+    std::vector<std::uint32_t> level(n, 0);
+    std::uint32_t levels = 0;
+    for(std::size_t r = 0; r < n; ++r)
+    {
+      const std::size_t s = forward ? r : n - 1 - r;
+      const Node_data& d = node_data_[s];
+      const std::size_t first = forward ? d.links_begin : d.links_split;
+      const std::size_t last = forward ? d.links_split : d.links_end;
+      std::uint32_t l = 0;
+      for(std::size_t i = first; i < last; ++i) l = (std::max)(l, level[links_[i].neighbor] + 1);
+      level[s] = l;
+      levels = (std::max)(levels, l + 1);
+    }
+    std::vector<std::size_t> start(std::size_t(levels) + 1, 0);
+    for(std::size_t s = 0; s < n; ++s) ++start[level[s] + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    order.resize(n);
+    for(std::size_t r = 0; r < n; ++r)
+    {
+      const std::size_t s = forward ? r : n - 1 - r;
+      order[start[level[s]]++] = static_cast<std::uint32_t>(s);
+    }
+  };
+  order_by_levels(true, forward_order_);
+  order_by_levels(false, backward_order_);
+  if(done_size_ != n)
+  {
+    done_.reset(new std::atomic<std::uint32_t>[n]);
+    done_size_ = n;
+  }
+  for(std::size_t s = 0; s < n; ++s) done_[s].store(0, std::memory_order_relaxed);
+  pass_ = 0;
+}
+
+template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost>
-const FT* Trws_solver<FT>::edge_table(const Discrete_energy<FT, PairwiseCost>& energy,
-                                      const Link& L, std::size_t ks, bool check)
+const FT* Trws_solver<FT, ConcurrencyTag>::edge_table(const Discrete_energy<FT, PairwiseCost>& energy,
+                                                      const Link& L, std::size_t ks, bool check, Scratch& w)
 {
   if constexpr(Discrete_energy<FT, PairwiseCost>::has_tables)
   {
     (void)ks;
     (void)check;
+    (void)w;
     return energy.tables_.data() + L.table;
   }
   else
@@ -562,31 +692,32 @@ const FT* Trws_solver<FT>::edge_table(const Discrete_energy<FT, PairwiseCost>& e
     const std::size_t rows = L.source ? ks : L.neighbor_labels;
     const std::size_t cols = L.source ? L.neighbor_labels : ks;
     const PairwiseCost& cost = energy.pairwise_cost_functor();
+    FT* table = w.table.data();
     if constexpr(internal::Trws_has_fill_table<PairwiseCost, FT>::value)
-      cost.fill_table(L.edge, rows, cols, table_.data());
+      cost.fill_table(L.edge, rows, cols, table);
     else
     {
-      FT* out = table_.data();
+      FT* out = table;
       for(std::size_t k = 0; k < rows; ++k)
         for(std::size_t l = 0; l < cols; ++l) *out++ = FT(cost(std::size_t(L.edge), k, l));
     }
     if(check)
     {
-      const std::size_t bad = internal::trws_first_non_finite(table_.data(), rows * cols);
+      const std::size_t bad = internal::trws_first_non_finite(table, rows * cols);
       if(bad < rows * cols)
         throw Invalid_energy_error(internal::trws_message(
             "Discrete_energy: pairwise cost of edge ", L.edge, " (", energy.source(L.edge), ", ",
             energy.target(L.edge), "), labels (", bad / cols, ", ", bad % cols, ") is ",
-            table_[bad], " (costs must be finite)"));
+            table[bad], " (costs must be finite)"));
     }
-    return table_.data();
+    return table;
   }
 }
 
-template <typename FT>
+template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost>
-void Trws_solver<FT>::prefetch_tables(const Discrete_energy<FT, PairwiseCost>& energy,
-                                      std::size_t s, bool forward) const
+void Trws_solver<FT, ConcurrencyTag>::prefetch_tables(const Discrete_energy<FT, PairwiseCost>& energy,
+                                                      std::size_t s, bool forward) const
 {
 #if defined(__GNUC__) && !defined(CGAL_SMC_TRWS_NO_PREFETCH)
   if constexpr(Discrete_energy<FT, PairwiseCost>::has_tables)
@@ -609,11 +740,12 @@ void Trws_solver<FT>::prefetch_tables(const Discrete_energy<FT, PairwiseCost>& e
   (void)forward;
 }
 
-template <typename FT>
-FT Trws_solver<FT>::send(const FT* theta, FT gamma, std::size_t ks, const Link& L, const FT* table)
+template <typename FT, typename ConcurrencyTag>
+FT Trws_solver<FT, ConcurrencyTag>::send(const FT* theta, FT gamma, std::size_t ks, const Link& L,
+                                         const FT* table, Scratch& w)
 {
   const FT* CGAL_SMC_TRWS_RESTRICT in = messages_.data() + L.message_in;
-  FT* CGAL_SMC_TRWS_RESTRICT shifted = shifted_.data();
+  FT* CGAL_SMC_TRWS_RESTRICT shifted = w.shifted.data();
   for(std::size_t k = 0; k < ks; ++k) shifted[k] = gamma * theta[k] - in[k];
   FT* out = messages_.data() + L.message_out;
   // The kernels normalise the message by its first entry and return that constant.
@@ -621,105 +753,184 @@ FT Trws_solver<FT>::send(const FT* theta, FT gamma, std::size_t ks, const Link& 
                   : internal::trws_min_plus_to_source(shifted, table, L.neighbor_labels, ks, out);
 }
 
-template <typename FT>
+template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost>
-double Trws_solver<FT>::forward_pass(const Discrete_energy<FT, PairwiseCost>& energy, bool check,
-                                     double& labeling_energy)
+void Trws_solver<FT, ConcurrencyTag>::forward_node(const Discrete_energy<FT, PairwiseCost>& energy,
+                                                   std::size_t s, bool check, Scratch& w)
+{
+  FT* theta = w.theta.data();
+  FT* costs = w.costs.data();
+  const Node_data& d = node_data_[s];
+  const std::size_t ks = energy.number_of_labels(s);
+  const FT* unary = energy.unary_costs(s);
+  // theta = theta_s + all incoming messages; costs = theta_s + messages from later neighbours
+  // + pairwise costs to the labels already chosen for earlier neighbours, theta_ts(x_t, .),
+  // which node t left in conditional_ when it chose x_t.
+  for(std::size_t k = 0; k < ks; ++k) theta[k] = costs[k] = unary[k];
+  for(std::size_t i = d.links_begin; i < d.links_split; ++i)
+  {
+    const FT* in = messages_.data() + links_[i].message_in;
+    const FT* conditional = conditional_.data() + links_[i].message_in;
+    for(std::size_t k = 0; k < ks; ++k)
+    {
+      theta[k] += in[k];
+      costs[k] += conditional[k];
+    }
+  }
+  for(std::size_t i = d.links_split; i < d.links_end; ++i)
+  {
+    const FT* in = messages_.data() + links_[i].message_in;
+    for(std::size_t k = 0; k < ks; ++k)
+    {
+      theta[k] += in[k];
+      costs[k] += in[k];
+    }
+  }
+  std::size_t best = 0;
+  FT theta_min = theta[0];
+  for(std::size_t k = 1; k < ks; ++k)
+  {
+    if(costs[k] < costs[best]) best = k;
+    theta_min = theta[k] < theta_min ? theta[k] : theta_min;
+  }
+  labels_[s] = static_cast<std::uint32_t>(best);
+  // Exact energy of the labeling, each edge counted at its later end.
+  double e_s = double(unary[best]);
+  for(std::size_t i = d.links_begin; i < d.links_split; ++i)
+    e_s += double(conditional_[links_[i].message_in + best]);
+  node_energy_[s] = e_s;
+  node_bound_[s] = d.bound_weight * double(theta_min);
+  for(std::size_t i = d.links_split; i < d.links_end; ++i)
+  {
+    const Link& L = links_[i];
+    const FT* table = edge_table(energy, L, ks, check, w);
+    link_bound_[i] = double(send(theta, d.gamma, ks, L, table, w));
+    // theta_st(x_s, .) for the neighbour, read while the table is in cache.
+    FT* conditional = conditional_.data() + L.message_out;
+    const std::size_t kt = L.neighbor_labels;
+    if(L.source) // s indexes the rows: row x_s
+      std::copy(table + best * kt, table + best * kt + kt, conditional);
+    else // s indexes the columns: column x_s
+      for(std::size_t l = 0; l < kt; ++l) conditional[l] = table[l * ks + best];
+  }
+}
+
+template <typename FT, typename ConcurrencyTag>
+template <typename PairwiseCost>
+void Trws_solver<FT, ConcurrencyTag>::backward_node(const Discrete_energy<FT, PairwiseCost>& energy,
+                                                    std::size_t s, Scratch& w)
+{
+  const Node_data& d = node_data_[s];
+  if(d.links_split == d.links_begin) return; // no earlier neighbour to send to
+  FT* theta = w.theta.data();
+  const std::size_t ks = energy.number_of_labels(s);
+  const FT* unary = energy.unary_costs(s);
+  for(std::size_t k = 0; k < ks; ++k) theta[k] = unary[k];
+  for(std::size_t i = d.links_begin; i < d.links_end; ++i)
+  {
+    const FT* in = messages_.data() + links_[i].message_in;
+    for(std::size_t k = 0; k < ks; ++k) theta[k] += in[k];
+  }
+  for(std::size_t i = d.links_begin; i < d.links_split; ++i)
+  {
+    const Link& L = links_[i];
+    send(theta, d.gamma, ks, L, edge_table(energy, L, ks, false, w), w);
+  }
+}
+
+template <typename FT, typename ConcurrencyTag>
+template <typename Update, typename Prefetch>
+void Trws_solver<FT, ConcurrencyTag>::parallel_pass(const std::vector<std::uint32_t>& order, bool forward,
+                                                    const Update& update, const Prefetch& prefetch)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  const std::uint32_t pass = ++pass_;
+  const std::size_t n = order.size();
+  std::atomic<std::size_t> next(0);
+  const std::size_t chunk = 4;  // nodes taken at once (fewer atomic operations; neighbours often together)
+  // Each worker takes the next chunk of nodes in level order and waits, before each node, for
+  // the neighbours it depends on. They come earlier in the order: in a chunk that this worker took
+  // (done) or that a running worker is processing, so the wait ends even when TBB runs several
+  // workers one after the other on the same thread.
+  tbb::parallel_for(std::size_t(0), scratch_.size(), [&](std::size_t worker) {
+    Scratch& w = scratch_[worker];
+    for(std::size_t begin = next.fetch_add(chunk, std::memory_order_relaxed); begin < n;
+        begin = next.fetch_add(chunk, std::memory_order_relaxed))
+      for(std::size_t p = begin, end = (std::min)(n, begin + chunk); p < end; ++p)
+      {
+        const std::size_t s = order[p];
+        if(p + 1 < n) prefetch(order[p + 1]);
+        const Node_data& d = node_data_[s];
+        const std::size_t first = forward ? d.links_begin : d.links_split;
+        const std::size_t last = forward ? d.links_split : d.links_end;
+        for(std::size_t i = first; i < last; ++i)
+        {
+          const std::atomic<std::uint32_t>& flag = done_[links_[i].neighbor];
+          for(unsigned spins = 0; flag.load(std::memory_order_acquire) != pass; ++spins)
+            if(spins >= 4096) std::this_thread::yield();
+        }
+        update(s, w);
+        done_[s].store(pass, std::memory_order_release);
+      }
+  });
+#else
+  (void)order;
+  (void)forward;
+  (void)update;
+  (void)prefetch;
+#endif
+}
+
+template <typename FT, typename ConcurrencyTag>
+template <typename PairwiseCost>
+double Trws_solver<FT, ConcurrencyTag>::forward_pass(const Discrete_energy<FT, PairwiseCost>& energy, bool check,
+                                                     double& labeling_energy)
 {
   const std::size_t n = energy.number_of_nodes();
+  if(runs_in_parallel(energy))
+    parallel_pass(
+        forward_order_, true, [&](std::size_t s, Scratch& w) { forward_node(energy, s, check, w); },
+        [&](std::size_t s) { prefetch_tables(energy, s, true); });
+  else
+    for(std::size_t s = 0; s < n; ++s)
+    {
+      if(s + 1 < n) prefetch_tables(energy, s + 1, true);
+      forward_node(energy, s, check, scratch_[0]);
+    }
+  // Summed in the node order, as the sequential pass would (the same result with any schedule).
   double bound = 0, labeling = 0;
-  FT* theta = theta_.data();
-  FT* costs = label_costs_.data();
   for(std::size_t s = 0; s < n; ++s)
   {
-    if(s + 1 < n) prefetch_tables(energy, s + 1, true);
     const Node_data& d = node_data_[s];
-    const std::size_t ks = energy.number_of_labels(s);
-    const FT* unary = energy.unary_costs(s);
-    // theta = theta_s + all incoming messages; costs = theta_s + messages from later neighbours
-    // + pairwise costs to the labels already chosen for earlier neighbours, theta_ts(x_t, .),
-    // which node t left in conditional_ when it chose x_t.
-    for(std::size_t k = 0; k < ks; ++k) theta[k] = costs[k] = unary[k];
-    for(std::size_t i = d.links_begin; i < d.links_split; ++i)
-    {
-      const FT* in = messages_.data() + links_[i].message_in;
-      const FT* conditional = conditional_.data() + links_[i].message_in;
-      for(std::size_t k = 0; k < ks; ++k)
-      {
-        theta[k] += in[k];
-        costs[k] += conditional[k];
-      }
-    }
-    for(std::size_t i = d.links_split; i < d.links_end; ++i)
-    {
-      const FT* in = messages_.data() + links_[i].message_in;
-      for(std::size_t k = 0; k < ks; ++k)
-      {
-        theta[k] += in[k];
-        costs[k] += in[k];
-      }
-    }
-    std::size_t best = 0;
-    FT theta_min = theta[0];
-    for(std::size_t k = 1; k < ks; ++k)
-    {
-      if(costs[k] < costs[best]) best = k;
-      theta_min = theta[k] < theta_min ? theta[k] : theta_min;
-    }
-    labels_[s] = static_cast<std::uint32_t>(best);
-    // Exact energy of the labeling, each edge counted at its later end.
-    double e_s = double(unary[best]);
-    for(std::size_t i = d.links_begin; i < d.links_split; ++i)
-      e_s += double(conditional_[links_[i].message_in + best]);
-    labeling += e_s;
-    if(d.bound_weight > 0) bound += d.bound_weight * double(theta_min);
-    for(std::size_t i = d.links_split; i < d.links_end; ++i)
-    {
-      const Link& L = links_[i];
-      const FT* table = edge_table(energy, L, ks, check);
-      bound += double(send(theta, d.gamma, ks, L, table));
-      // theta_st(x_s, .) for the neighbour, read while the table is in cache.
-      FT* conditional = conditional_.data() + L.message_out;
-      const std::size_t kt = L.neighbor_labels;
-      if(L.source) // s indexes the rows: row x_s
-        std::copy(table + best * kt, table + best * kt + kt, conditional);
-      else // s indexes the columns: column x_s
-        for(std::size_t l = 0; l < kt; ++l) conditional[l] = table[l * ks + best];
-    }
+    labeling += node_energy_[s];
+    if(d.bound_weight > 0) bound += node_bound_[s];
+    for(std::size_t i = d.links_split; i < d.links_end; ++i) bound += link_bound_[i];
   }
   labeling_energy = labeling;
   return bound;
 }
 
-template <typename FT>
+template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost>
-void Trws_solver<FT>::backward_pass(const Discrete_energy<FT, PairwiseCost>& energy)
+void Trws_solver<FT, ConcurrencyTag>::backward_pass(const Discrete_energy<FT, PairwiseCost>& energy)
 {
-  FT* theta = theta_.data();
+  if(runs_in_parallel(energy))
+  {
+    parallel_pass(
+        backward_order_, false, [&](std::size_t s, Scratch& w) { backward_node(energy, s, w); },
+        [&](std::size_t s) { prefetch_tables(energy, s, false); });
+    return;
+  }
   for(std::size_t s = energy.number_of_nodes(); s-- > 0;)
   {
     if(s > 0) prefetch_tables(energy, s - 1, false);
-    const Node_data& d = node_data_[s];
-    if(d.links_split == d.links_begin) continue; // no earlier neighbour to send to
-    const std::size_t ks = energy.number_of_labels(s);
-    const FT* unary = energy.unary_costs(s);
-    for(std::size_t k = 0; k < ks; ++k) theta[k] = unary[k];
-    for(std::size_t i = d.links_begin; i < d.links_end; ++i)
-    {
-      const FT* in = messages_.data() + links_[i].message_in;
-      for(std::size_t k = 0; k < ks; ++k) theta[k] += in[k];
-    }
-    for(std::size_t i = d.links_begin; i < d.links_split; ++i)
-    {
-      const Link& L = links_[i];
-      send(theta, d.gamma, ks, L, edge_table(energy, L, ks, false));
-    }
+    backward_node(energy, s, scratch_[0]);
   }
 }
 
-template <typename FT>
+template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost, typename Integer, typename NamedParameters>
-Trws_result Trws_solver<FT>::solve(const Discrete_energy<FT, PairwiseCost>& energy,
+Trws_result Trws_solver<FT, ConcurrencyTag>::solve(const Discrete_energy<FT, PairwiseCost>& energy,
                                    std::vector<Integer>& labeling, const NamedParameters& np)
 {
   static_assert(std::is_integral<Integer>::value, "labels must be integers");

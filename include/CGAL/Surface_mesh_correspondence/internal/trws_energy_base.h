@@ -28,7 +28,7 @@
 namespace CGAL {
 namespace Surface_mesh_correspondence {
 
-template <typename FT>
+template <typename FT, typename ConcurrencyTag>
 class Trws_solver;
 
 namespace internal {
@@ -92,7 +92,7 @@ public:
   std::size_t unary_offset(std::size_t i) const { return unary_offsets_[i]; }
 
 protected:
-  template <typename>
+  template <typename, typename>
   friend class CGAL::Surface_mesh_correspondence::Trws_solver;
 
   // Builds the structure; throws Invalid_energy_error for a node without labels, an edge with an
