@@ -719,6 +719,20 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   BOOST_TEST(r.automatic_maps_kept == (r.automatic_maps_distortion < r.given_maps_distortion));
   BOOST_TEST(r.automatic_maps_distortion == c.automatic_maps_distortion);  // the same automatic maps
   BOOST_TEST(r.given_maps_distortion < c.given_maps_distortion);          // the repair removed the swap
+  // Both pairs are compared before their growth to the final size, and only the kept one grows:
+  // the kept maps are those of the final size either way (checked above), and so are the repaired
+  // maps kept without computing the automatic maps (a threshold above their distortion).
+  BOOST_TEST(r.final_basis_size == a.final_basis_size);
+  BOOST_TEST(u.final_basis_size == a.final_basis_size);
+  std::vector<std::size_t> k12 = s.map_12, k21 = s.map_21;
+  const smc::Automatic_initialization_result k = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, k12, k21,
+      params::compare_with_automatic_maps(true, params::automatic_maps_comparison_threshold(10.0)));
+  BOOST_TEST(!k.automatic_maps_computed);
+  BOOST_TEST(!k.automatic_maps_kept);
+  BOOST_TEST(k12 == u12);
+  BOOST_TEST(k21 == u21);
+  BOOST_TEST(k.final_basis_size == u.final_basis_size);
   // The comparison threshold: the swapped arms with a threshold just above their distortion are
   // kept without computing the automatic maps; just below it, the comparison runs as without one.
   BOOST_TEST(c.automatic_maps_computed);

@@ -92,8 +92,9 @@ struct Automatic_initialization_result
   double sample_distortion_before = 0, sample_distortion = 0;
   /// Comparison with the automatic maps (repair_torn_maps() with `compare_with_automatic_maps`):
   /// whether it ran, whether the automatic maps replaced the (repaired) given maps, and the
-  /// geodesic distortions of the sample maps (mean of both directions) of both pairs of maps at
-  /// the final basis size. When the automatic maps are kept, the other fields describe them (their
+  /// geodesic distortions of the sample maps (mean of both directions) of both pairs of maps, at
+  /// the pass basis size (zoomout_pass_size) for maps computed by a pass: only the kept pair then
+  /// grows to the final basis size. When the automatic maps are kept, the other fields describe them (their
   /// own repair passes, torn fractions, functional maps), except the times and `passes`, which
   /// count both the given maps' repair and the automatic initialisation.
   /// `automatic_maps_computed` is false when the given maps' sample distortion was at most
@@ -1561,14 +1562,16 @@ Automatic_initialization_result repair_distorted_maps(const Initialization_shape
 
 /// The core of automatic_initial_maps() on precomputed shapes (see single_pass_initial_maps()):
 /// one pass, then the tear repair (repair_torn_maps()) and the distortion repair
-/// (repair_distorted_maps()).
+/// (repair_distorted_maps()), then the growth to the final size (grow_initial_maps()) unless
+/// `grow` is false (the maps then stay at the pass size, for a comparison before the growth).
 template <typename ConcurrencyTag>
 Automatic_initialization_result automatic_initial_maps(const Initialization_shape& shape1,
                                                        const Initialization_shape& shape2,
                                                        const Initialization_settings& s,
                                                        std::vector<std::size_t>& map_12,
                                                        std::vector<std::size_t>& map_21,
-                                                       Initialization_pass_cache* pass_cache = nullptr)
+                                                       Initialization_pass_cache* pass_cache = nullptr,
+                                                       bool grow = true)
 {
   const auto start = std::chrono::steady_clock::now();
   Initialization_pass_cache own_cache;
@@ -1579,7 +1582,7 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
       repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first, &cache);
   if(s.distortion_repair_passes > 0)
     result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
-  grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
+  if(grow) grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -1591,8 +1594,11 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
 /// included, which no repair from their own cores undoes (the WKS maps of TOSCA_r michael13 -
 /// michael19: error 0.34, orientation kept on 78% of the triangles). Given maps whose sample
 /// distortion is at most automatic_maps_comparison_threshold are kept without computing the
-/// automatic maps. Returns `given`, or the automatic maps' result, with the comparison's fields and
-/// the times of both.
+/// automatic maps. Both pairs are compared at the pass size (zoomout_pass_size: the given maps
+/// after a kept repair pass, the automatic maps before their growth), and only the kept pair grows
+/// to zoomout_final_size (grow_initial_maps(); given maps that no repair pass recomputed have no
+/// functional maps and stay as they are). Returns `given`, or the automatic maps' result, with the
+/// comparison's fields and the times of both.
 template <typename ConcurrencyTag>
 Automatic_initialization_result compare_given_with_automatic_maps(const Initialization_shape& shape1,
                                                                   const Initialization_shape& shape2,
@@ -1612,11 +1618,12 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
     Automatic_initialization_result r = given;
     r.compared_with_automatic_maps = true;
     r.given_maps_distortion = given_distortion;
+    grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
     return r;
   }
   std::vector<std::size_t> a12, a21;
   Automatic_initialization_result automatic =
-      automatic_initial_maps<ConcurrencyTag>(shape1, shape2, s, a12, a21, &cache);
+      automatic_initial_maps<ConcurrencyTag>(shape1, shape2, s, a12, a21, &cache, false);
   const double automatic_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, a12, a21);
   const bool keep_automatic = automatic_distortion < given_distortion;
   if(s.verbose)
@@ -1638,6 +1645,7 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
   r.automatic_maps_kept = keep_automatic;
   r.given_maps_distortion = given_distortion;
   r.automatic_maps_distortion = automatic_distortion;
+  grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   return r;
 }
 
@@ -1665,8 +1673,10 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
     r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
     if(s.distortion_repair_passes > 0)
       r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
-    // Maps of a kept repair pass grow to the final size (the given maps have no functional maps).
-    grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+    // Maps of a kept repair pass grow to the final size (the given maps have no functional maps),
+    // after the comparison when there is one (only the kept maps grow).
+    if(!s.compare_with_automatic_maps)
+      grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   }
   if(s.compare_with_automatic_maps)
     r = compare_given_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
