@@ -14,8 +14,8 @@
 //    (one iteration = 2 |E| m^2 min-plus operations).
 // 2. The min-plus kernels alone on the same tables: multi-versioned SIMD vs portable loops.
 // 3. A 256 x 256 grid, 16 labels, truncated linear costs (image restoration).
-// 4. Trws_solver<float, CGAL::Parallel_tag> against Trws_solver<float> on the breadth-first
-//    numbered mesh MRF (the numbering of the refinement), float tables, 15 iterations as in the
+// 4. Trws_solver<float, CGAL::Parallel_tag> against Trws_solver<float> on the CoMap-shaped MRF
+//    with breadth-first numbered nodes (the numbering of the refinement), float tables, 15 iterations as in the
 //    refinement of automatic maps: wall-clock time (best of 5) and whether the runs are identical.
 //
 // Usage: bench_trws [number_of_vertices (5000)] [iterations timed (30)] [labels (10,20,30,40)]
@@ -174,12 +174,12 @@ double start_memory_measurement()
   return rss;
 }
 
-template <typename FT>
-Run comap_run(const Mrf_shape& shape, std::size_t m, bool tables, std::size_t timed_iterations)
+// Calls f(energy) with the CoMap-shaped energy of `shape` with m labels (stored tables or the
+// functor). Random label values and unary costs are drawn per mesh vertex, so that renumbered nodes
+// get the same energy.
+template <typename FT, typename F>
+void with_comap_energy(const Mrf_shape& shape, std::size_t m, bool tables, const F& f)
 {
-  const double rss_before = start_memory_measurement();
-  // Random label values and unary costs drawn per mesh vertex, so that renumbered nodes get the
-  // same energy.
   std::mt19937 rng{static_cast<unsigned>(m)};
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<FT> vertex_values(shape.n * m), vertex_unary(shape.n * m), values(shape.n * m);
@@ -188,7 +188,6 @@ Run comap_run(const Mrf_shape& shape, std::size_t m, bool tables, std::size_t ti
   for(std::size_t i = 0; i < shape.n; ++i)
     std::copy_n(vertex_values.begin() + shape.vertex[i] * m, m, values.begin() + i * m);
   const std::vector<std::size_t> counts(shape.n, m);
-  Run run;
   auto fill_unary = [&](auto& energy) {
     for(std::size_t i = 0; i < shape.n; ++i)
       std::copy_n(vertex_unary.begin() + shape.vertex[i] * m, m, energy.unary_costs(i));
@@ -204,14 +203,22 @@ Run comap_run(const Mrf_shape& shape, std::size_t m, bool tables, std::size_t ti
       for(std::size_t k = 0; k < m; ++k)
         for(std::size_t l = 0; l < m; ++l) table[k * m + l] = cost(e, k, l);
     }
-    run = time_energy<FT>(energy, timed_iterations);
+    f(energy);
   }
   else
   {
     smc::Discrete_energy<FT, Abs_difference_cost<FT> > energy(counts, shape.edges, cost);
     fill_unary(energy);
-    run = time_energy<FT>(energy, timed_iterations);
+    f(energy);
   }
+}
+
+template <typename FT>
+Run comap_run(const Mrf_shape& shape, std::size_t m, bool tables, std::size_t timed_iterations)
+{
+  const double rss_before = start_memory_measurement();
+  Run run;
+  with_comap_energy<FT>(shape, m, tables, [&](const auto& energy) { run = time_energy<FT>(energy, timed_iterations); });
   run.peak_mib = smc_bench::peak_memory_mib() - rss_before;
   return run;
 }
@@ -327,8 +334,8 @@ void grid_run(Report& report, int size, std::size_t labels, bool tables,
 
 #ifdef CGAL_LINKED_WITH_TBB
 // Wall-clock time of 15 TRW-S iterations with Trws_solver<float, Tag> (best of 5), and the run.
-template <typename Tag>
-double parallel_row_ms(const smc::Discrete_energy<float>& energy, std::vector<int>& labels, smc::Trws_result& result)
+template <typename Tag, typename Energy>
+double parallel_row_ms(const Energy& energy, std::vector<int>& labels, smc::Trws_result& result)
 {
   double best = 1e300;
   for(int rep = 0; rep < 5; ++rep)
@@ -346,24 +353,13 @@ void parallel_rows(const Mrf_shape& shape)
   Report report({"labels", "nodes", "threads", "sequential_ms", "parallel_ms", "speedup", "identical"});
   for(std::size_t m : {20, 40})
   {
-    std::mt19937 rng{static_cast<unsigned>(m)};
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    std::vector<float> values(shape.n * m);
-    for(float& v : values) v = u(rng);
-    smc::Discrete_energy<float> energy(std::vector<std::size_t>(shape.n, m), shape.edges);
-    for(std::size_t i = 0; i < shape.n; ++i)
-      for(std::size_t k = 0; k < m; ++k) energy.unary_costs(i)[k] = 0.5f * u(rng);
-    for(std::size_t e = 0; e < shape.edges.size(); ++e)
-    {
-      float* table = energy.pairwise_costs(e);
-      const std::size_t s = shape.edges[e].first, t = shape.edges[e].second;
-      for(std::size_t k = 0; k < m; ++k)
-        for(std::size_t l = 0; l < m; ++l) table[k * m + l] = std::abs(values[s * m + k] - values[t * m + l]);
-    }
     std::vector<int> a, b;
     smc::Trws_result ra, rb;
-    const double sequential = parallel_row_ms<CGAL::Sequential_tag>(energy, a, ra);
-    const double parallel = parallel_row_ms<CGAL::Parallel_tag>(energy, b, rb);
+    double sequential = 0, parallel = 0;
+    with_comap_energy<float>(shape, m, true, [&](const auto& energy) {
+      sequential = parallel_row_ms<CGAL::Sequential_tag>(energy, a, ra);
+      parallel = parallel_row_ms<CGAL::Parallel_tag>(energy, b, rb);
+    });
     const bool identical = a == b && ra.energy == rb.energy && ra.lower_bound == rb.lower_bound;
     report.add({std::to_string(m), std::to_string(shape.n),
                 std::to_string(tbb::this_task_arena::max_concurrency()), Report::num(sequential, 1),

@@ -1673,13 +1673,13 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
     r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
     if(s.distortion_repair_passes > 0)
       r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
-    // Maps of a kept repair pass grow to the final size (the given maps have no functional maps),
-    // after the comparison when there is one (only the kept maps grow).
-    if(!s.compare_with_automatic_maps)
-      grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   }
+  // Maps of a kept repair pass grow to the final size (the given maps have no functional maps and
+  // stay as they are); with the comparison, only the kept maps grow.
   if(s.compare_with_automatic_maps)
     r = compare_given_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+  else
+    grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

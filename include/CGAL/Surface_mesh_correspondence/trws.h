@@ -40,7 +40,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <memory>
 #include <numeric>
 #include <ostream>
 #include <thread>
@@ -408,8 +407,8 @@ double Discrete_energy<FT, Dense_pairwise_tables>::energy(const LabelRange& labe
 /// of its earlier neighbours), and the threads take them level by level, each node waiting for its
 /// earlier neighbours only. The backward pass is the mirror image. Every node computes exactly what
 /// it computes in the sequential pass, and the bound and labeling energy are summed in the node
-/// order afterwards, so the labeling, the energy and the bound are identical bit for bit (on
-/// 5000-vertex meshes numbered breadth-first, about 150 levels of about 30 nodes).
+/// order afterwards, so the labeling, the energy and the bound are identical bit for bit (counted
+/// on six 5000-vertex TOSCA_r meshes numbered breadth-first: 150-180 levels of about 30 nodes).
 template <typename FT = double, typename ConcurrencyTag = CGAL::Sequential_tag>
 class Trws_solver
 {
@@ -462,7 +461,7 @@ public:
            (labels_.capacity() + best_labels_.capacity()) * sizeof(std::uint32_t) +
            (node_energy_.capacity() + node_bound_.capacity() + link_bound_.capacity()) * sizeof(double) +
            (forward_order_.capacity() + backward_order_.capacity()) * sizeof(std::uint32_t) +
-           done_size_ * sizeof(std::atomic<std::uint32_t>) + scratch;
+           done_.capacity() * sizeof(std::atomic<std::uint32_t>) + scratch;
   }
 
 private:
@@ -493,9 +492,11 @@ private:
   template <typename PairwiseCost>
   void prepare(const Discrete_energy<FT, PairwiseCost>& energy);
 
-  // Whether the passes of `energy` run on several threads (see the class comment).
+  // The threads that run the passes of `energy` (1: sequential passes; see the class comment).
   template <typename PairwiseCost>
-  bool runs_in_parallel(const Discrete_energy<FT, PairwiseCost>& energy) const;
+  static std::size_t number_of_threads(const Discrete_energy<FT, PairwiseCost>& energy);
+  // Whether the passes of the prepared energy run on several threads (one scratch per thread).
+  bool parallel() const { return scratch_.size() > 1; }
 
   // The levels of the parallel passes: forward_order_ and backward_order_ list the nodes level by
   // level.
@@ -549,23 +550,23 @@ private:
   std::vector<Scratch> scratch_; // one per thread (one sequentially)
   // Parallel passes: the nodes level by level, and the pass in which each node was last updated.
   std::vector<std::uint32_t> forward_order_, backward_order_;
-  std::unique_ptr<std::atomic<std::uint32_t>[]> done_;
-  std::size_t done_size_ = 0;
+  std::vector<std::atomic<std::uint32_t> > done_;
   std::uint32_t pass_ = 0;
 };
 
 template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost>
-bool Trws_solver<FT, ConcurrencyTag>::runs_in_parallel(const Discrete_energy<FT, PairwiseCost>& energy) const
+std::size_t Trws_solver<FT, ConcurrencyTag>::number_of_threads(const Discrete_energy<FT, PairwiseCost>& energy)
 {
 #ifdef CGAL_LINKED_WITH_TBB
-  return internal::Is_parallel<ConcurrencyTag>::value && Discrete_energy<FT, PairwiseCost>::has_tables &&
-         energy.number_of_nodes() >= minimum_parallel_nodes && tbb::this_task_arena::max_concurrency() > 1;
+  if(internal::Is_parallel<ConcurrencyTag>::value && Discrete_energy<FT, PairwiseCost>::has_tables &&
+     energy.number_of_nodes() >= minimum_parallel_nodes)
+    return static_cast<std::size_t>((std::max)(1, tbb::this_task_arena::max_concurrency()));
 #else
   (void)energy;
   (void)internal::Is_parallel<ConcurrencyTag>::value;
-  return false;
 #endif
+  return 1;
 }
 
 template <typename FT, typename ConcurrencyTag>
@@ -615,16 +616,9 @@ void Trws_solver<FT, ConcurrencyTag>::prepare(const Discrete_energy<FT, Pairwise
   node_energy_.assign(n, 0.0);
   node_bound_.assign(n, 0.0);
   link_bound_.assign(2 * m, 0.0);
-  std::size_t threads = 1;
-  if(runs_in_parallel(energy))
-  {
-#ifdef CGAL_LINKED_WITH_TBB
-    threads = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
-#endif
-    prepare_levels(n);
-  }
   const std::size_t k = base.maximum_number_of_labels();
-  scratch_.resize(threads);
+  scratch_.resize(number_of_threads(energy));
+  if(parallel()) prepare_levels(n);
   for(Scratch& w : scratch_)
   {
     w.theta.resize(k);
@@ -666,12 +660,10 @@ void Trws_solver<FT, ConcurrencyTag>::prepare_levels(std::size_t n)
   };
   order_by_levels(true, forward_order_);
   order_by_levels(false, backward_order_);
-  if(done_size_ != n)
-  {
-    done_.reset(new std::atomic<std::uint32_t>[n]);
-    done_size_ = n;
-  }
-  for(std::size_t s = 0; s < n; ++s) done_[s].store(0, std::memory_order_relaxed);
+  if(done_.size() != n)
+    done_ = std::vector<std::atomic<std::uint32_t> >(n);  // value-initialised: 0
+  else
+    for(std::atomic<std::uint32_t>& flag : done_) flag.store(0, std::memory_order_relaxed);
   pass_ = 0;
 }
 
@@ -887,7 +879,7 @@ double Trws_solver<FT, ConcurrencyTag>::forward_pass(const Discrete_energy<FT, P
                                                      double& labeling_energy)
 {
   const std::size_t n = energy.number_of_nodes();
-  if(runs_in_parallel(energy))
+  if(parallel())
     parallel_pass(
         forward_order_, true, [&](std::size_t s, Scratch& w) { forward_node(energy, s, check, w); },
         [&](std::size_t s) { prefetch_tables(energy, s, true); });
@@ -914,7 +906,7 @@ template <typename FT, typename ConcurrencyTag>
 template <typename PairwiseCost>
 void Trws_solver<FT, ConcurrencyTag>::backward_pass(const Discrete_energy<FT, PairwiseCost>& energy)
 {
-  if(runs_in_parallel(energy))
+  if(parallel())
   {
     parallel_pass(
         backward_order_, false, [&](std::size_t s, Scratch& w) { backward_node(energy, s, w); },
