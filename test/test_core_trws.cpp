@@ -435,6 +435,48 @@ BOOST_AUTO_TEST_CASE(parallel_passes_give_the_sequential_result)
                    "functor costs, " + std::to_string(size) + " x " + std::to_string(size) + " grid");
   }
 }
+
+BOOST_AUTO_TEST_CASE(trws_minimize_takes_the_concurrency_tag)
+{
+  // trws_minimize<Parallel_tag> runs its passes on the threads of the arena (reported by
+  // number_of_threads) and returns the sequential result; functor costs and small energies are
+  // solved sequentially.
+  std::mt19937 rng(33);
+  auto grid = [&rng](int w) {
+    Problem p;
+    p.labels = trws_test::random_label_counts(std::size_t(w * w), 12, rng);
+    for(int y = 0; y < w; ++y)
+      for(int x = 0; x < w; ++x)
+      {
+        if(x + 1 < w) p.edges.emplace_back(y * w + x, y * w + x + 1);
+        if(y + 1 < w) p.edges.emplace_back(y * w + x, (y + 1) * w + x);
+        if(x + 1 < w && y + 1 < w) p.edges.emplace_back(y * w + x, (y + 1) * w + x + 1);
+      }
+    trws_test::random_costs(p, rng, 1.5);
+    return p;
+  };
+  const auto np = params::relative_tolerance(0.0).number_of_iterations(20);
+  tbb::task_arena arena(2);
+  const Problem large = grid(36), small = grid(10);
+  const smc::Discrete_energy<float> energy = trws_test::make_energy<float>(large);
+  std::vector<int> sequential_labels, parallel_labels, labels;
+  smc::Trws_result sequential, parallel, functor, little;
+  arena.execute([&] {
+    sequential = smc::trws_minimize(energy, sequential_labels, np);
+    parallel = smc::trws_minimize<CGAL::Parallel_tag>(energy, parallel_labels, np);
+    functor = smc::trws_minimize<CGAL::Parallel_tag>(trws_test::make_functor_energy<float>(large), labels, np);
+    little = smc::trws_minimize<CGAL::Parallel_tag>(trws_test::make_energy<float>(small), labels, np);
+  });
+  BOOST_TEST(sequential.number_of_threads == 1u);
+  BOOST_TEST(parallel.number_of_threads == 2u);
+  BOOST_TEST((parallel_labels == sequential_labels));
+  BOOST_TEST(parallel.energy == sequential.energy);
+  BOOST_TEST(parallel.lower_bound == sequential.lower_bound);
+  BOOST_TEST(parallel.number_of_iterations == sequential.number_of_iterations);
+  BOOST_TEST(functor.number_of_threads == 1u);
+  BOOST_TEST(functor.energy == sequential.energy);
+  BOOST_TEST(little.number_of_threads == 1u);
+}
 #endif
 
 BOOST_AUTO_TEST_CASE(solver_reuse_and_modification)

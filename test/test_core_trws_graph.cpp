@@ -20,6 +20,11 @@
 #include <boost/property_map/function_property_map.hpp>
 #include <boost/test/unit_test.hpp>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/task_arena.h>
+#endif
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -211,6 +216,61 @@ BOOST_AUTO_TEST_CASE(potts_grid_no_worse_than_alpha_expansion)
     BOOST_TEST(r.lower_bound <= alpha_energy + 1e-9);
   }
 }
+
+#ifdef CGAL_LINKED_WITH_TBB
+BOOST_AUTO_TEST_CASE(trws_labeling_takes_the_concurrency_tag)
+{
+  // A 36 x 36 grid graph (above Trws_solver's minimum_parallel_nodes) with table costs:
+  // trws_labeling<double, Parallel_tag> runs on both threads of the arena and writes the
+  // sequential labeling; with Potts functors it runs sequentially.
+  const int w = 36;
+  const std::size_t n = std::size_t(w * w);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::uniform_int_distribution<int> kdist(2, 9);
+  std::vector<int> counts(n);
+  std::vector<std::vector<double> > unary(n);
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    counts[i] = kdist(rng);
+    for(int k = 0; k < counts[i]; ++k) unary[i].push_back(u(rng));
+  }
+  Graph g(n);
+  for(int y = 0; y < w; ++y)
+    for(int x = 0; x < w; ++x)
+      for(int d = 0; d < 2; ++d)
+      {
+        if((d == 0 && x + 1 == w) || (d == 1 && y + 1 == w)) continue;
+        const std::size_t a = std::size_t(y * w + x), b = d == 0 ? a + 1 : a + std::size_t(w);
+        Edge_data data;
+        data.weight = 0.2 + u(rng);
+        data.table.resize(std::size_t(counts[a] * counts[b]));
+        for(double& c : data.table) c = 1.5 * u(rng);
+        add_edge(a, b, data, g);
+      }
+  std::vector<int> sequential(n, -1), parallel(n, -1), potts_labels(n, -1);
+  auto potts = boost::make_function_property_map<Graph_edge>(
+      [&](const Graph_edge& e) { return Potts{g[e].weight}; });
+  const auto np = params::relative_tolerance(0.0).number_of_iterations(20);
+  smc::Trws_result rs, rp, rf;
+  tbb::task_arena arena(2);
+  arena.execute([&] {
+    rs = smc::trws_labeling(g, index_map(counts, g), index_map(unary, g), get(&Edge_data::table, g),
+                            index_map(sequential, g), np);
+    rp = smc::trws_labeling<double, CGAL::Parallel_tag>(g, index_map(counts, g), index_map(unary, g),
+                                                        get(&Edge_data::table, g), index_map(parallel, g), np);
+    rf = smc::trws_labeling<double, CGAL::Parallel_tag>(g, index_map(counts, g), index_map(unary, g), potts,
+                                                        index_map(potts_labels, g), np);
+  });
+  BOOST_TEST(rs.number_of_threads == 1u);
+  BOOST_TEST(rp.number_of_threads == 2u);
+  BOOST_TEST((parallel == sequential));
+  BOOST_TEST(rp.energy == rs.energy);
+  BOOST_TEST(rp.lower_bound == rs.lower_bound);
+  BOOST_TEST(rf.number_of_threads == 1u);
+  BOOST_TEST(std::count(potts_labels.begin(), potts_labels.end(), -1) == 0);
+}
+#endif
 
 BOOST_AUTO_TEST_CASE(parallel_edges_are_merged)
 {

@@ -96,6 +96,10 @@ struct Trws_result
   std::size_t number_of_iterations = 0;
   /// Why the run stopped.
   Trws_termination termination = Trws_termination::iteration_limit;
+  /// Threads that ran the passes: 1 when they ran sequentially (`CGAL::Sequential_tag`, an energy
+  /// with functor costs or with fewer than `Trws_solver::minimum_parallel_nodes` nodes, or an arena
+  /// of one thread), else the concurrency of the TBB arena the solver was called in.
+  std::size_t number_of_threads = 1;
 };
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
@@ -441,7 +445,7 @@ public:
   ///   bound of that iteration; returns `bool`, `false` stops the run. Pass `std::ref(v)` to
   ///   keep the visitor's state. Default: `Trws_default_visitor`.
   ///
-  /// \returns energy, lower bound, iterations run and the termination reason.
+  /// \returns energy, lower bound, iterations run, the termination reason and the threads used.
   /// \throws Invalid_energy_error for a NaN or infinite cost (naming the node or edge).
   /// \throws Invalid_parameter_error for a bad parameter or initial labeling.
   /// \throws Numerical_error if the messages overflow (costs too large for FT).
@@ -952,6 +956,7 @@ Trws_result Trws_solver<FT, ConcurrencyTag>::solve(const Discrete_energy<FT, Pai
   Trws_result result;
   energy.check_costs();
   prepare(energy);
+  result.number_of_threads = scratch_.size();
 
   double best_energy = std::numeric_limits<double>::infinity();
   best_labels_.assign(n, 0);
@@ -1033,15 +1038,20 @@ Trws_result Trws_solver<FT, ConcurrencyTag>::solve(const Discrete_energy<FT, Pai
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// Minimises a `Discrete_energy` with TRW-S: `Trws_solver<FT>().solve(energy, labeling, np)` (see
-/// `Trws_solver::solve()` for the named parameters and exceptions).
-template <typename FT, typename PairwiseCost, typename Integer,
+/// Minimises a `Discrete_energy` with TRW-S: `Trws_solver<FT, ConcurrencyTag>().solve(energy,
+/// labeling, np)` (see `Trws_solver::solve()` for the named parameters and exceptions).
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (default) or `CGAL::Parallel_tag` (requires TBB):
+///   parallel passes on energies with stored tables of at least
+///   `Trws_solver::minimum_parallel_nodes` nodes, with the sequential result bit for bit (see
+///   `Trws_solver`).
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename FT, typename PairwiseCost, typename Integer,
           typename NamedParameters = parameters::Default_named_parameters>
 Trws_result trws_minimize(const Discrete_energy<FT, PairwiseCost>& energy,
                           std::vector<Integer>& labeling,
                           const NamedParameters& np = parameters::default_values())
 {
-  Trws_solver<FT> solver;
+  Trws_solver<FT, ConcurrencyTag> solver;
   return solver.solve(energy, labeling, np);
 }
 
@@ -1147,6 +1157,10 @@ auto trws_vertex_index_map(const Graph& g, const NamedParameters& np)
 ///
 /// \tparam FT `float` or `double`: type of the stored costs and of the messages (float halves the
 ///   memory and is faster; double is more accurate).
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (default) or `CGAL::Parallel_tag` (requires TBB):
+///   with table costs and at least `Trws_solver::minimum_parallel_nodes` vertices, the passes run
+///   on the threads of the current TBB arena, with the sequential result bit for bit (see
+///   `Trws_solver`); functor costs are always solved sequentially.
 /// \tparam Graph a model of `VertexListGraph` and `EdgeListGraph` (e.g. `boost::adjacency_list`,
 ///   or a `FaceGraph` such as `CGAL::Surface_mesh` seen as the graph of its vertices and edges).
 /// \tparam LabelCountMap a model of `ReadablePropertyMap`, vertex descriptor to integer
@@ -1176,14 +1190,14 @@ auto trws_vertex_index_map(const Graph& g, const NamedParameters& np)
 ///   lower_bound)` if that member exists, else `visitor(k, energy, lower_bound)`; returns `bool`,
 ///   `false` stops. Default: `Trws_default_visitor`.
 ///
-/// \returns energy, lower bound, iterations run and the termination reason.
+/// \returns energy, lower bound, iterations run, the termination reason and the threads used.
 /// \throws Invalid_energy_error naming the vertex or edge (by vertex indices): a vertex with no
 ///   label, a unary range or table of the wrong size, a NaN or infinite cost, a self-loop.
 /// \throws Invalid_parameter_error for an invalid vertex index map, a bad initial labeling or a
 ///   bad parameter value.
 /// \throws Numerical_error if the messages overflow (costs too large for FT).
-template <typename FT = double, typename Graph, typename LabelCountMap, typename UnaryCostMap,
-          typename PairwiseCostMap, typename LabelingMap,
+template <typename FT = double, typename ConcurrencyTag = CGAL::Sequential_tag, typename Graph,
+          typename LabelCountMap, typename UnaryCostMap, typename PairwiseCostMap, typename LabelingMap,
           typename NamedParameters = parameters::Default_named_parameters>
 Trws_result trws_labeling(const Graph& g, LabelCountMap label_counts, UnaryCostMap unary_costs,
                           PairwiseCostMap pairwise_costs, LabelingMap labeling,
@@ -1304,7 +1318,7 @@ Trws_result trws_labeling(const Graph& g, LabelCountMap label_counts, UnaryCostM
 
   // The initial labeling, read from its vertex map into a vector indexed by node.
   auto solve = [&](const auto& energy, std::vector<std::size_t>& labels) {
-    Trws_solver<FT> solver;
+    Trws_solver<FT, ConcurrencyTag> solver;
     if constexpr(!parameters::is_default_parameter<NamedParameters,
                                                    internal_np::initial_labeling_t>::value)
     {
