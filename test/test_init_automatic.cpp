@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -894,6 +895,70 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_give_the_same_maps)
   const Mesh tiny = icosphere(1);
   const smc::Correspondence_shape<Mesh> small(tiny, params::number_of_eigenpairs(10));
   BOOST_CHECK_THROW(smc::automatic_initial_maps(small, s2, c12, c21), smc::Invalid_mesh_error);
+}
+
+BOOST_AUTO_TEST_CASE(prepared_shapes_keep_the_initialization_descriptors)
+{
+  // A shape keeps what the initialisation computed for it (descriptors, and the spectrum when its
+  // own does not serve): later calls with the same descriptor settings take it and give the same
+  // maps; other descriptor settings compute it again. repair_torn_maps() and
+  // compare_with_automatic_maps() on shapes give the maps of the overloads on meshes.
+  const Pair_fixture& f = symmetric();
+  const Swapped_arms s = swapped_arms(f);
+  const smc::Correspondence_shape<Mesh> s1(f.pair.m1, params::number_of_eigenpairs(200)),
+      s2(f.pair.m2, params::number_of_eigenpairs(40));  // its spectrum does not serve
+  std::vector<std::size_t> m12, m21, a12, a21, b12, b21;
+  smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21);
+  const smc::Automatic_initialization_result first = smc::automatic_initial_maps(s1, s2, a12, a21);
+  BOOST_TEST(first.reused_descriptors == 0);
+  BOOST_TEST(first.reused_spectra == 1);
+  const smc::Automatic_initialization_result again = smc::automatic_initial_maps(s1, s2, b12, b21);
+  BOOST_TEST(again.reused_descriptors == 2);
+  BOOST_TEST(again.reused_spectra == 1);
+  BOOST_TEST(a12 == m12);
+  BOOST_TEST(a21 == m21);
+  BOOST_TEST(b12 == m12);
+  BOOST_TEST(b21 == m21);
+  // Settings outside the descriptors (here the tear repair) keep them; other WKS energies do not,
+  // and then replace them (one entry per shape).
+  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, params::number_of_repair_passes(0)).reused_descriptors == 2);
+  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, params::number_of_wks_energies(60)).reused_descriptors == 0);
+  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, params::number_of_wks_energies(60)).reused_descriptors == 2);
+
+  // The given-maps functions on shapes: the maps of the overloads on meshes.
+  std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21, q12 = s.map_12, q21 = s.map_21;
+  const smc::Automatic_initialization_result r =
+      smc::repair_torn_maps(s1, s2, r12, r21, params::compare_with_automatic_maps(true));
+  const smc::Automatic_initialization_result q =
+      smc::repair_torn_maps(f.pair.m1, f.pair.m2, q12, q21, params::compare_with_automatic_maps(true));
+  BOOST_TEST(r.reused_descriptors == 0);  // the entry held the 60-energy descriptors
+  BOOST_TEST(q.reused_descriptors == 0);
+  BOOST_TEST(r.repair_passes == q.repair_passes);
+  BOOST_TEST(r.automatic_maps_kept == q.automatic_maps_kept);
+  BOOST_TEST(r12 == q12);
+  BOOST_TEST(r21 == q21);
+  std::vector<std::size_t> c12 = s.map_12, c21 = s.map_21, d12 = s.map_12, d21 = s.map_21;
+  const smc::Automatic_initialization_result c = smc::compare_with_automatic_maps(s1, s2, c12, c21);
+  smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, d12, d21);
+  BOOST_TEST(c.reused_descriptors == 2);
+  BOOST_TEST(c.compared_with_automatic_maps);
+  BOOST_TEST(c12 == d12);
+  BOOST_TEST(c21 == d21);
+  std::vector<std::size_t> short12(s.map_12.begin(), s.map_12.end() - 1), ok21 = s.map_21;
+  BOOST_CHECK_THROW(smc::repair_torn_maps(s1, s2, short12, ok21), smc::Invalid_map_error);
+
+  // Concurrent calls on new shapes compute each shape's data once.
+  const smc::Correspondence_shape<Mesh> t1(f.pair.m1, params::number_of_eigenpairs(40)),
+      t2(f.pair.m2, params::number_of_eigenpairs(40));
+  std::vector<std::size_t> x12, x21, y12, y21;
+  smc::Automatic_initialization_result x, y;
+  std::thread other([&] { x = smc::automatic_initial_maps(t1, t2, x12, x21); });
+  y = smc::automatic_initial_maps(t1, t2, y12, y21);
+  other.join();
+  BOOST_TEST(x.reused_descriptors + y.reused_descriptors == 2);
+  BOOST_TEST(x12 == m12);
+  BOOST_TEST(y12 == m12);
+  BOOST_TEST(y21 == m21);
 }
 
 BOOST_AUTO_TEST_CASE(units_do_not_matter)

@@ -21,6 +21,7 @@
 
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -59,6 +60,18 @@ typedef Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> De
 
 namespace internal {
 
+/// What the automatic initialisation computes for one shape (its spectrum when the shape's own
+/// does not serve, and its descriptors), kept by the shape for later calls with the same
+/// descriptor settings (`key`). One entry; the mutex makes concurrent calls on the same shape
+/// compute it once.
+struct Shape_initialization_cache
+{
+  std::mutex mutex;
+  std::vector<double> key;
+  std::shared_ptr<const Laplace_beltrami_spectrum> spectrum;  ///< null: the shape's own spectrum served
+  std::shared_ptr<const Eigen::MatrixXd> descriptors;          ///< null: nothing cached yet
+};
+
 /// Index-based precomputed data of a shape (what the algorithms use).
 struct Shape_data
 {
@@ -79,6 +92,9 @@ struct Shape_data
   std::vector<int> node_order;     ///< node -> vertex
   std::vector<int> node_of_vertex; ///< vertex -> node
   Shape_preprocessing_times times;
+  /// Filled by the first automatic_initial_maps(), repair_torn_maps() or
+  /// compare_with_automatic_maps() call on the shape (shared by copies of the shape).
+  std::shared_ptr<Shape_initialization_cache> initialization = std::make_shared<Shape_initialization_cache>();
 
   int number_of_vertices() const { return mesh.number_of_vertices(); }
   /// The spectrum with the most eigenpairs that the shape holds.
@@ -237,7 +253,10 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
 /// The precomputed data of one shape for matching: its flat copy, Laplace-Beltrami spectrum,
 /// descriptor stack, geodesic distance oracle and search structures. The expensive part of the
 /// coupled refinement that depends on one shape only is done here once: a shape matched against
-/// many others is prepared once.
+/// many others is prepared once. The automatic initialisation on shapes (automatic_initial_maps(),
+/// repair_torn_maps(), compare_with_automatic_maps()) also keeps what it computes for a shape (its
+/// descriptors, and its spectrum when the shape's own does not serve) for later calls with the
+/// same descriptor settings; copies of a shape share all of this.
 ///
 /// Vertices are numbered by the mesh's vertex index map (named parameter `vertex_index_map`);
 /// maps between prepared shapes are vectors of such indices (Vertex_index_map_vector).

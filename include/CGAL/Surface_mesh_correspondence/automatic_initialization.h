@@ -106,9 +106,13 @@ struct Automatic_initialization_result
   double given_maps_distortion = 0, automatic_maps_distortion = 0;
   /// Passes run in all (fits and ZoomOut: the first one and the repair passes, kept or not).
   int passes = 0;
-  /// Spectra taken from the prepared shapes (0, 1 or 2) instead of computed (the overload on
-  /// Correspondence_shape objects; always 0 for the one on meshes).
+  /// Spectra taken from the prepared shapes (0, 1 or 2) instead of computed (the overloads on
+  /// Correspondence_shape objects; always 0 for those on meshes).
   int reused_spectra = 0;
+  /// Shapes (0, 1 or 2) whose initialisation spectrum and descriptors were kept from an earlier
+  /// call with the same descriptor settings (the overloads on Correspondence_shape objects; always
+  /// 0 for those on meshes).
+  int reused_descriptors = 0;
   /// The final functional maps (unit-area bases): C12 (k x k, pulls functions from mesh 2 back
   /// to mesh 1, the map of map_12) and C21.
   Eigen::MatrixXd functional_map_12, functional_map_21;
@@ -1690,15 +1694,33 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
 /// leading eigenpairs, equal to a new solve's up to the solver's tolerance), else computed.
 struct Initialization_mesh_data
 {
-  std::unique_ptr<Laplace_beltrami_spectrum> own_spectrum;
+  std::shared_ptr<const Laplace_beltrami_spectrum> own_spectrum;
   const Laplace_beltrami_spectrum* spectrum = nullptr;
-  Eigen::MatrixXd descriptors;
-  bool reused = false;
+  std::shared_ptr<const Eigen::MatrixXd> descriptors;
+  bool reused = false;  ///< `given` served
+  bool cached = false;  ///< taken from the shape's cache
 };
 
+/// What initialization_descriptors() and the initialisation's spectrum depend on: two settings
+/// with the same key give the same spectrum and descriptors on a shape.
+inline std::vector<double> initialization_cache_key(const Initialization_settings& s)
+{
+  const Initialization_descriptor_layout l = initialization_descriptor_layout(s);
+  std::vector<double> key{double(initialization_number_of_eigenpairs(s)), double(pass_final_size(s)),
+                          double(l.wks), double(l.hks), s.wks_variance, double(s.signed_descriptor_smoothing)};
+  for(const auto& p : l.signed_pairs)
+  {
+    key.push_back(p.first);
+    key.push_back(p.second);
+  }
+  return key;
+}
+
+/// Fills `out` for mesh `m`. With a `cache` (a prepared shape's), the spectrum and descriptors
+/// kept there for the same settings are taken, else computed and kept.
 inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_beltrami_spectrum* given,
                                         const Initialization_settings& s, const char* name,
-                                        Initialization_mesh_data& out)
+                                        Initialization_mesh_data& out, Shape_initialization_cache* cache = nullptr)
 {
   const int k = initialization_number_of_eigenpairs(s);
   // Checked before the eigensolver, which would fail with a less helpful message.
@@ -1707,34 +1729,73 @@ inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_bel
                              std::to_string(m.number_of_vertices()) + " vertices, too few for a basis of " +
                              std::to_string(k) + " eigenfunctions (reduce zoomout_final_size)");
   out.reused = given && given->number_of_eigenpairs() >= k && given->uses_intrinsic_delaunay();
+  std::unique_lock<std::mutex> lock;
+  std::vector<double> key;
+  if(cache)
+  {
+    lock = std::unique_lock<std::mutex>(cache->mutex);  // held while computing: computed once
+    key = initialization_cache_key(s);
+    if(cache->descriptors && cache->key == key)
+    {
+      out.own_spectrum = cache->spectrum;
+      out.spectrum = out.own_spectrum ? out.own_spectrum.get() : given;
+      out.descriptors = cache->descriptors;
+      out.cached = true;
+      return;
+    }
+  }
   if(out.reused && given->number_of_eigenpairs() == k)
     out.spectrum = given;
   else
   {
-    out.own_spectrum.reset(out.reused ? new Laplace_beltrami_spectrum(*given, k)
-                                      : new Laplace_beltrami_spectrum(m, parameters::number_of_eigenpairs(k)));
+    out.own_spectrum = out.reused ? std::make_shared<const Laplace_beltrami_spectrum>(*given, k)
+                                  : std::make_shared<const Laplace_beltrami_spectrum>(
+                                        m, parameters::number_of_eigenpairs(k));
     out.spectrum = out.own_spectrum.get();
   }
-  out.descriptors = initialization_descriptors<CGAL::Sequential_tag>(m, *out.spectrum, s);
+  out.descriptors =
+      std::make_shared<const Eigen::MatrixXd>(initialization_descriptors<CGAL::Sequential_tag>(m, *out.spectrum, s));
+  if(cache)
+  {
+    cache->key = std::move(key);
+    cache->spectrum = out.own_spectrum;
+    cache->descriptors = out.descriptors;
+  }
 }
 
-/// Prepares both meshes for the initialisation (concurrently; `given1`, `given2`: spectra to
-/// reuse, or null) and runs `f(shape1, shape2)`; the result gets the preparation time and the
-/// total time since `start`.
+/// A flat mesh for on_prepared_meshes(): with a prepared shape's spectrum (to reuse when it
+/// serves) and cache, or neither.
+struct Initialization_mesh_source
+{
+  const Indexed_mesh* mesh = nullptr;
+  const Laplace_beltrami_spectrum* spectrum = nullptr;
+  Shape_initialization_cache* cache = nullptr;
+};
+
+inline Initialization_mesh_source initialization_mesh_source(const Shape_data& d)
+{
+  return {&d.mesh, &d.largest_spectrum(), d.initialization.get()};
+}
+
+/// Prepares both meshes for the initialisation (concurrently) and runs `f(shape1, shape2)`; the
+/// result gets the preparation time and the total time since `start`.
 template <typename ConcurrencyTag, typename F>
-Automatic_initialization_result on_prepared_meshes(const Indexed_mesh& m1, const Laplace_beltrami_spectrum* given1,
-                                                   const Indexed_mesh& m2, const Laplace_beltrami_spectrum* given2,
+Automatic_initialization_result on_prepared_meshes(const Initialization_mesh_source& m1,
+                                                   const Initialization_mesh_source& m2,
                                                    const Initialization_settings& s,
                                                    std::chrono::steady_clock::time_point start, const F& f)
 {
   Initialization_mesh_data d1, d2;
-  invoke_both<ConcurrencyTag>([&] { prepare_initialization_mesh(m1, given1, s, "mesh 1", d1); },
-                              [&] { prepare_initialization_mesh(m2, given2, s, "mesh 2", d2); });
+  invoke_both<ConcurrencyTag>(
+      [&] { prepare_initialization_mesh(*m1.mesh, m1.spectrum, s, "mesh 1", d1, m1.cache); },
+      [&] { prepare_initialization_mesh(*m2.mesh, m2.spectrum, s, "mesh 2", d2, m2.cache); });
   const double prepare_seconds = seconds_since(start);
-  const Initialization_shape a{&m1, d1.spectrum, &d1.descriptors}, b{&m2, d2.spectrum, &d2.descriptors};
+  const Initialization_shape a{m1.mesh, d1.spectrum, d1.descriptors.get()},
+      b{m2.mesh, d2.spectrum, d2.descriptors.get()};
   Automatic_initialization_result r = f(a, b);
   r.spectra_seconds = prepare_seconds;
   r.reused_spectra = int(d1.reused) + int(d2.reused);
+  r.reused_descriptors = int(d1.cached) + int(d2.cached);
   r.total_seconds = seconds_since(start);
   return r;
 }
@@ -1742,12 +1803,14 @@ Automatic_initialization_result on_prepared_meshes(const Indexed_mesh& m1, const
 /// Both public overloads of automatic_initial_maps(): prepares the two flat meshes (in parallel
 /// with Parallel_tag) and runs the core; the times count from `start`.
 template <typename ConcurrencyTag>
-Automatic_initialization_result automatic_initial_maps_of_meshes(
-    const Indexed_mesh& m1, const Laplace_beltrami_spectrum* given1, const Indexed_mesh& m2,
-    const Laplace_beltrami_spectrum* given2, const Initialization_settings& s, std::vector<std::size_t>& map_12,
-    std::vector<std::size_t>& map_21, std::chrono::steady_clock::time_point start)
+Automatic_initialization_result automatic_initial_maps_of_meshes(const Initialization_mesh_source& m1,
+                                                                 const Initialization_mesh_source& m2,
+                                                                 const Initialization_settings& s,
+                                                                 std::vector<std::size_t>& map_12,
+                                                                 std::vector<std::size_t>& map_21,
+                                                                 std::chrono::steady_clock::time_point start)
 {
-  return on_prepared_meshes<ConcurrencyTag>(m1, given1, m2, given2, s, start,
+  return on_prepared_meshes<ConcurrencyTag>(m1, m2, s, start,
                                             [&](const Initialization_shape& a, const Initialization_shape& b) {
                                               return automatic_initial_maps<ConcurrencyTag>(a, b, s, map_12, map_21);
                                             });
@@ -1858,8 +1921,8 @@ Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1,
   internal::check_initialization_settings(s);
   const internal::Indexed_mesh m1 = internal::initialization_mesh(tm1, np, "mesh 1");
   const internal::Indexed_mesh m2 = internal::initialization_mesh(tm2, np, "mesh 2");
-  return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(m1, nullptr, m2, nullptr, s, map_12, map_21,
-                                                                    start);
+  return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>({&m1, nullptr, nullptr}, {&m2, nullptr, nullptr}, s,
+                                                                    map_12, map_21, start);
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
@@ -1869,12 +1932,17 @@ Automatic_initialization_result automatic_initial_maps(const TriangleMesh1& tm1,
 /// their own spectrum (prepared with `number_of_eigenpairs(200)`), or a larger
 /// `precomputed_spectrum` that they were given (one eigensolve per shape serves both: compute
 /// 200 eigenpairs, give them to a shape that uses 100); otherwise the spectrum is computed
-/// (`reused_spectra` of the result counts the reused ones). The initialisation's descriptors are
-/// recomputed on every call (they are not stored in the shape). With a spectrum of exactly the
-/// needed size the maps are exactly those of the mesh-based overload with the same named
-/// parameters (`np`: the initialisation's parameters, as there); leading eigenpairs of a larger
-/// one equal a new solve's up to the eigensolver's tolerance. The maps can be passed to
-/// refine_coupled_maps() with the same shapes.
+/// (`reused_spectra` of the result counts the reused ones). Each shape keeps what the
+/// initialisation computed for it (its descriptors, and the spectrum when its own did not serve):
+/// later calls on the shape with the same descriptor settings (eigenpairs, WKS, HKS and signed
+/// descriptor settings, pass size) take them instead of computing them again
+/// (`reused_descriptors` counts those shapes), also from repair_torn_maps() and
+/// compare_with_automatic_maps() on shapes. One entry per shape (about 5 MB of descriptors for
+/// 5000 vertices, plus 8 MB when the spectrum is kept); concurrent calls on one shape compute it
+/// once. With a spectrum of exactly the needed size the maps are exactly those of the mesh-based
+/// overload with the same named parameters (`np`: the initialisation's parameters, as there);
+/// leading eigenpairs of a larger one equal a new solve's up to the eigensolver's tolerance. The
+/// maps can be passed to refine_coupled_maps() with the same shapes.
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename Tag1,
           typename TriangleMesh2, typename Tag2, typename NamedParameters = parameters::Default_named_parameters>
 Automatic_initialization_result automatic_initial_maps(const Correspondence_shape<TriangleMesh1, Tag1>& shape_1,
@@ -1886,15 +1954,37 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   const internal::Initialization_settings s = internal::initialization_settings(np);
   internal::check_initialization_settings(s);
-  return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(
-      shape_1.data().mesh, &shape_1.data().largest_spectrum(), shape_2.data().mesh,
-      &shape_2.data().largest_spectrum(), s, map_12, map_21, start);
+  return internal::automatic_initial_maps_of_meshes<ConcurrencyTag>(internal::initialization_mesh_source(shape_1.data()),
+                                                                    internal::initialization_mesh_source(shape_2.data()),
+                                                                    s, map_12, map_21, start);
 }
 
 namespace internal {
 
-/// Both public functions on given maps: repair_torn_maps() (`repair` true) and
-/// compare_with_automatic_maps() (`compare` true, which overrides the named parameter).
+/// The public functions on given maps: repair_torn_maps() (`repair` true) and
+/// compare_with_automatic_maps() (`compare` true, which overrides the named parameter), on flat
+/// meshes or prepared shapes.
+template <typename ConcurrencyTag, typename NamedParameters>
+Automatic_initialization_result repair_given_maps_of_sources(const Initialization_mesh_source& m1,
+                                                             const Initialization_mesh_source& m2,
+                                                             std::vector<std::size_t>& map_12,
+                                                             std::vector<std::size_t>& map_21, const NamedParameters& np,
+                                                             bool repair, bool compare,
+                                                             std::chrono::steady_clock::time_point start)
+{
+  Initialization_settings s = initialization_settings(np);
+  if(compare) s.compare_with_automatic_maps = true;
+  check_initialization_settings(s);
+  const std::size_t n1 = std::size_t(m1.mesh->number_of_vertices()), n2 = std::size_t(m2.mesh->number_of_vertices());
+  check_vertex_map(map_12, n1, n2, "map 1->2");
+  check_vertex_map(map_21, n2, n1, "map 2->1");
+  return on_prepared_meshes<ConcurrencyTag>(m1, m2, s, start,
+                                            [&](const Initialization_shape& a, const Initialization_shape& b) {
+                                              return repair_given_maps<ConcurrencyTag>(a, b, s, map_12, map_21,
+                                                                                       repair);
+                                            });
+}
+
 template <typename ConcurrencyTag, typename TriangleMesh1, typename TriangleMesh2, typename NamedParameters>
 Automatic_initialization_result repair_given_maps_of_meshes(const TriangleMesh1& tm1, const TriangleMesh2& tm2,
                                                             std::vector<std::size_t>& map_12,
@@ -1902,18 +1992,23 @@ Automatic_initialization_result repair_given_maps_of_meshes(const TriangleMesh1&
                                                             const NamedParameters& np, bool repair, bool compare)
 {
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-  Initialization_settings s = initialization_settings(np);
-  if(compare) s.compare_with_automatic_maps = true;
-  check_initialization_settings(s);
   const Indexed_mesh m1 = initialization_mesh(tm1, np, "mesh 1");
   const Indexed_mesh m2 = initialization_mesh(tm2, np, "mesh 2");
-  check_vertex_map(map_12, std::size_t(m1.number_of_vertices()), std::size_t(m2.number_of_vertices()), "map 1->2");
-  check_vertex_map(map_21, std::size_t(m2.number_of_vertices()), std::size_t(m1.number_of_vertices()), "map 2->1");
-  return on_prepared_meshes<ConcurrencyTag>(m1, nullptr, m2, nullptr, s, start,
-                                            [&](const Initialization_shape& a, const Initialization_shape& b) {
-                                              return repair_given_maps<ConcurrencyTag>(a, b, s, map_12, map_21,
-                                                                                       repair);
-                                            });
+  return repair_given_maps_of_sources<ConcurrencyTag>({&m1, nullptr, nullptr}, {&m2, nullptr, nullptr}, map_12,
+                                                      map_21, np, repair, compare, start);
+}
+
+template <typename ConcurrencyTag, typename TriangleMesh1, typename Tag1, typename TriangleMesh2, typename Tag2,
+          typename NamedParameters>
+Automatic_initialization_result repair_given_maps_of_shapes(const Correspondence_shape<TriangleMesh1, Tag1>& shape_1,
+                                                            const Correspondence_shape<TriangleMesh2, Tag2>& shape_2,
+                                                            std::vector<std::size_t>& map_12,
+                                                            std::vector<std::size_t>& map_21,
+                                                            const NamedParameters& np, bool repair, bool compare)
+{
+  return repair_given_maps_of_sources<ConcurrencyTag>(initialization_mesh_source(shape_1.data()),
+                                                      initialization_mesh_source(shape_2.data()), map_12, map_21, np,
+                                                      repair, compare, std::chrono::steady_clock::now());
 }
 
 } // namespace internal
@@ -1953,6 +2048,21 @@ Automatic_initialization_result repair_torn_maps(const TriangleMesh1& tm1, const
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// repair_torn_maps() on two prepared shapes (maps indexed as the shapes' vertices): the shapes'
+/// flat meshes, spectra and kept initialisation descriptors are used as by
+/// automatic_initial_maps() on shapes, with the same maps as the overload on meshes when the
+/// shapes' spectra are of the initialisation's size or not used.
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename Tag1,
+          typename TriangleMesh2, typename Tag2, typename NamedParameters = parameters::Default_named_parameters>
+Automatic_initialization_result repair_torn_maps(const Correspondence_shape<TriangleMesh1, Tag1>& shape_1,
+                                                 const Correspondence_shape<TriangleMesh2, Tag2>& shape_2,
+                                                 std::vector<std::size_t>& map_12, std::vector<std::size_t>& map_21,
+                                                 const NamedParameters& np = parameters::default_values())
+{
+  return internal::repair_given_maps_of_shapes<ConcurrencyTag>(shape_1, shape_2, map_12, map_21, np, true, false);
+}
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Keeps maps computed elsewhere, or replaces them by the automatic maps of the pair
 /// (automatic_initial_maps() with the same named parameters), whichever distort the geodesic
 /// distances between 100 farthest-point samples of each mesh less (mean of both directions; ties
@@ -1981,6 +2091,21 @@ Automatic_initialization_result compare_with_automatic_maps(const TriangleMesh1&
                                                             const NamedParameters& np = parameters::default_values())
 {
   return internal::repair_given_maps_of_meshes<ConcurrencyTag>(tm1, tm2, map_12, map_21, np, false, true);
+}
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// compare_with_automatic_maps() on two prepared shapes (maps indexed as the shapes' vertices),
+/// using their flat meshes, spectra and kept initialisation descriptors as automatic_initial_maps()
+/// on shapes does.
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename Tag1,
+          typename TriangleMesh2, typename Tag2, typename NamedParameters = parameters::Default_named_parameters>
+Automatic_initialization_result compare_with_automatic_maps(const Correspondence_shape<TriangleMesh1, Tag1>& shape_1,
+                                                            const Correspondence_shape<TriangleMesh2, Tag2>& shape_2,
+                                                            std::vector<std::size_t>& map_12,
+                                                            std::vector<std::size_t>& map_21,
+                                                            const NamedParameters& np = parameters::default_values())
+{
+  return internal::repair_given_maps_of_shapes<ConcurrencyTag>(shape_1, shape_2, map_12, map_21, np, false, true);
 }
 
 } // namespace Surface_mesh_correspondence
