@@ -323,6 +323,23 @@ BOOST_AUTO_TEST_CASE(deterministic_float_double_functor_tables)
 #ifdef CGAL_LINKED_WITH_TBB
 namespace {
 
+// A w x w grid with random label counts (at most `max_labels`) and costs: edges to the right and
+// down, and with `diagonals` to the lower right.
+Problem grid_problem(int w, int max_labels, bool diagonals, double pairwise_scale, std::mt19937& rng)
+{
+  Problem p;
+  p.labels = trws_test::random_label_counts(std::size_t(w * w), max_labels, rng);
+  for(int y = 0; y < w; ++y)
+    for(int x = 0; x < w; ++x)
+    {
+      if(x + 1 < w) p.edges.emplace_back(y * w + x, y * w + x + 1);
+      if(y + 1 < w) p.edges.emplace_back(y * w + x, (y + 1) * w + x);
+      if(diagonals && x + 1 < w && y + 1 < w) p.edges.emplace_back(y * w + x, (y + 1) * w + x + 1);
+    }
+  trws_test::random_costs(p, rng, pairwise_scale);
+  return p;
+}
+
 // A run of Trws_solver<FT, Tag> on `energy` in an arena of `threads` threads: its labeling,
 // result and the bound of every iteration.
 struct Recorded_run
@@ -417,15 +434,7 @@ BOOST_AUTO_TEST_CASE(parallel_passes_give_the_sequential_result)
   smc::Trws_solver<float, CGAL::Parallel_tag> parallel;
   for(int size : {40, 12})
   {
-    Problem p;
-    p.labels = trws_test::random_label_counts(std::size_t(size * size), 9, rng);
-    for(int y = 0; y < size; ++y)
-      for(int x = 0; x < size; ++x)
-      {
-        if(x + 1 < size) p.edges.emplace_back(y * size + x, y * size + x + 1);
-        if(y + 1 < size) p.edges.emplace_back(y * size + x, (y + 1) * size + x);
-      }
-    trws_test::random_costs(p, rng);
+    const Problem p = grid_problem(size, 9, false, 1.0, rng);
     smc::Trws_solver<float> sequential;
     const Recorded_run reference = recorded_run(sequential, trws_test::make_energy<float>(p), 1);
     check_same_run(reference, recorded_run(parallel, trws_test::make_energy<float>(p), 2),
@@ -442,22 +451,9 @@ BOOST_AUTO_TEST_CASE(trws_minimize_takes_the_concurrency_tag)
   // number_of_threads) and returns the sequential result; functor costs and small energies are
   // solved sequentially.
   std::mt19937 rng(33);
-  auto grid = [&rng](int w) {
-    Problem p;
-    p.labels = trws_test::random_label_counts(std::size_t(w * w), 12, rng);
-    for(int y = 0; y < w; ++y)
-      for(int x = 0; x < w; ++x)
-      {
-        if(x + 1 < w) p.edges.emplace_back(y * w + x, y * w + x + 1);
-        if(y + 1 < w) p.edges.emplace_back(y * w + x, (y + 1) * w + x);
-        if(x + 1 < w && y + 1 < w) p.edges.emplace_back(y * w + x, (y + 1) * w + x + 1);
-      }
-    trws_test::random_costs(p, rng, 1.5);
-    return p;
-  };
   const auto np = params::relative_tolerance(0.0).number_of_iterations(20);
   tbb::task_arena arena(2);
-  const Problem large = grid(36), small = grid(10);
+  const Problem large = grid_problem(36, 12, true, 1.5, rng), small = grid_problem(10, 12, true, 1.5, rng);
   const smc::Discrete_energy<float> energy = trws_test::make_energy<float>(large);
   std::vector<int> sequential_labels, parallel_labels, labels;
   smc::Trws_result sequential, parallel, functor, little;

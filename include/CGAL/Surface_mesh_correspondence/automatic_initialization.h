@@ -1961,20 +1961,27 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 
 namespace internal {
 
-/// The public functions on given maps: repair_torn_maps() (`repair` true) and
-/// compare_with_automatic_maps() (`compare` true, which overrides the named parameter), on flat
-/// meshes or prepared shapes.
-template <typename ConcurrencyTag, typename NamedParameters>
-Automatic_initialization_result repair_given_maps_of_sources(const Initialization_mesh_source& m1,
-                                                             const Initialization_mesh_source& m2,
-                                                             std::vector<std::size_t>& map_12,
-                                                             std::vector<std::size_t>& map_21, const NamedParameters& np,
-                                                             bool repair, bool compare,
-                                                             std::chrono::steady_clock::time_point start)
+/// The settings of the public functions on given maps: repair_torn_maps() and, with `compare`
+/// (which overrides the named parameter), compare_with_automatic_maps(); checked.
+template <typename NamedParameters>
+Initialization_settings given_maps_settings(const NamedParameters& np, bool compare)
 {
   Initialization_settings s = initialization_settings(np);
   if(compare) s.compare_with_automatic_maps = true;
   check_initialization_settings(s);
+  return s;
+}
+
+/// The public functions on given maps (`repair`: repair_torn_maps(), else
+/// compare_with_automatic_maps()), on flat meshes or prepared shapes; the times count from `start`.
+template <typename ConcurrencyTag>
+Automatic_initialization_result repair_given_maps_of_sources(const Initialization_mesh_source& m1,
+                                                             const Initialization_mesh_source& m2,
+                                                             const Initialization_settings& s,
+                                                             std::vector<std::size_t>& map_12,
+                                                             std::vector<std::size_t>& map_21, bool repair,
+                                                             std::chrono::steady_clock::time_point start)
+{
   const std::size_t n1 = std::size_t(m1.mesh->number_of_vertices()), n2 = std::size_t(m2.mesh->number_of_vertices());
   check_vertex_map(map_12, n1, n2, "map 1->2");
   check_vertex_map(map_21, n2, n1, "map 2->1");
@@ -1992,23 +1999,11 @@ Automatic_initialization_result repair_given_maps_of_meshes(const TriangleMesh1&
                                                             const NamedParameters& np, bool repair, bool compare)
 {
   const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  const Initialization_settings s = given_maps_settings(np, compare);
   const Indexed_mesh m1 = initialization_mesh(tm1, np, "mesh 1");
   const Indexed_mesh m2 = initialization_mesh(tm2, np, "mesh 2");
-  return repair_given_maps_of_sources<ConcurrencyTag>({&m1, nullptr, nullptr}, {&m2, nullptr, nullptr}, map_12,
-                                                      map_21, np, repair, compare, start);
-}
-
-template <typename ConcurrencyTag, typename TriangleMesh1, typename Tag1, typename TriangleMesh2, typename Tag2,
-          typename NamedParameters>
-Automatic_initialization_result repair_given_maps_of_shapes(const Correspondence_shape<TriangleMesh1, Tag1>& shape_1,
-                                                            const Correspondence_shape<TriangleMesh2, Tag2>& shape_2,
-                                                            std::vector<std::size_t>& map_12,
-                                                            std::vector<std::size_t>& map_21,
-                                                            const NamedParameters& np, bool repair, bool compare)
-{
-  return repair_given_maps_of_sources<ConcurrencyTag>(initialization_mesh_source(shape_1.data()),
-                                                      initialization_mesh_source(shape_2.data()), map_12, map_21, np,
-                                                      repair, compare, std::chrono::steady_clock::now());
+  return repair_given_maps_of_sources<ConcurrencyTag>({&m1, nullptr, nullptr}, {&m2, nullptr, nullptr}, s, map_12,
+                                                      map_21, repair, start);
 }
 
 } // namespace internal
@@ -2059,7 +2054,10 @@ Automatic_initialization_result repair_torn_maps(const Correspondence_shape<Tria
                                                  std::vector<std::size_t>& map_12, std::vector<std::size_t>& map_21,
                                                  const NamedParameters& np = parameters::default_values())
 {
-  return internal::repair_given_maps_of_shapes<ConcurrencyTag>(shape_1, shape_2, map_12, map_21, np, true, false);
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  return internal::repair_given_maps_of_sources<ConcurrencyTag>(
+      internal::initialization_mesh_source(shape_1.data()), internal::initialization_mesh_source(shape_2.data()),
+      internal::given_maps_settings(np, false), map_12, map_21, true, start);
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
@@ -2105,7 +2103,10 @@ Automatic_initialization_result compare_with_automatic_maps(const Correspondence
                                                             std::vector<std::size_t>& map_21,
                                                             const NamedParameters& np = parameters::default_values())
 {
-  return internal::repair_given_maps_of_shapes<ConcurrencyTag>(shape_1, shape_2, map_12, map_21, np, false, true);
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  return internal::repair_given_maps_of_sources<ConcurrencyTag>(
+      internal::initialization_mesh_source(shape_1.data()), internal::initialization_mesh_source(shape_2.data()),
+      internal::given_maps_settings(np, true), map_12, map_21, false, start);
 }
 
 } // namespace Surface_mesh_correspondence
