@@ -699,7 +699,9 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   std::vector<std::size_t> t12 = f.pair.gt_12, t21 = f.pair.gt_21;
   const smc::Automatic_initialization_result t = smc::compare_with_automatic_maps(
       f.pair.m1, f.pair.m2, t12, t21,
-      params::spectral_basis_size(3, params::zoomout_final_size(4, params::zoomout_pass_size(4))));
+      params::spectral_basis_size(
+          3, params::zoomout_final_size(4, params::zoomout_pass_size(
+                                               4, params::automatic_maps_comparison_threshold(0.0)))));
   BOOST_TEST_MESSAGE("true maps against coarse automatic maps: sample distortion " << t.given_maps_distortion
                                                                                   << " against "
                                                                                   << t.automatic_maps_distortion);
@@ -708,10 +710,23 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   BOOST_TEST(t.given_maps_distortion < t.automatic_maps_distortion);
   BOOST_TEST(t12 == f.pair.gt_12);
   BOOST_TEST(t21 == f.pair.gt_21);
-  // repair_torn_maps() compares the repaired maps when asked, and only then.
+  // By default (threshold 0.035) the true maps, which distort the sample distances less than
+  // that, are kept without computing the automatic maps; the swapped arms are compared.
+  BOOST_TEST(smc::internal::Initialization_settings().automatic_maps_comparison_threshold == 0.035);
+  BOOST_TEST(t.given_maps_distortion < 0.035);
+  std::vector<std::size_t> v12 = f.pair.gt_12, v21 = f.pair.gt_21;
+  const smc::Automatic_initialization_result v = smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, v12, v21);
+  BOOST_TEST(v.compared_with_automatic_maps);
+  BOOST_TEST(!v.automatic_maps_computed);
+  BOOST_TEST(v.given_maps_distortion == t.given_maps_distortion);
+  BOOST_TEST(v12 == f.pair.gt_12);
+  BOOST_TEST(v21 == f.pair.gt_21);
+  BOOST_TEST(c.given_maps_distortion > 0.035);
+  // repair_torn_maps() compares the repaired maps when asked, and only then (threshold 0: always).
   std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21, u12 = s.map_12, u21 = s.map_21;
-  const smc::Automatic_initialization_result r =
-      smc::repair_torn_maps(f.pair.m1, f.pair.m2, r12, r21, params::compare_with_automatic_maps(true));
+  const smc::Automatic_initialization_result r = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, r12, r21,
+      params::compare_with_automatic_maps(true, params::automatic_maps_comparison_threshold(0.0)));
   const smc::Automatic_initialization_result u = smc::repair_torn_maps(f.pair.m1, f.pair.m2, u12, u21);
   BOOST_TEST(r.compared_with_automatic_maps);
   BOOST_TEST(!u.compared_with_automatic_maps);
@@ -927,13 +942,13 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_keep_the_initialization_descriptors)
 
   // The given-maps functions on shapes: the maps of the overloads on meshes.
   std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21, q12 = s.map_12, q21 = s.map_21;
-  const smc::Automatic_initialization_result r =
-      smc::repair_torn_maps(s1, s2, r12, r21, params::compare_with_automatic_maps(true));
-  const smc::Automatic_initialization_result q =
-      smc::repair_torn_maps(f.pair.m1, f.pair.m2, q12, q21, params::compare_with_automatic_maps(true));
+  const auto always = params::compare_with_automatic_maps(true, params::automatic_maps_comparison_threshold(0.0));
+  const smc::Automatic_initialization_result r = smc::repair_torn_maps(s1, s2, r12, r21, always);
+  const smc::Automatic_initialization_result q = smc::repair_torn_maps(f.pair.m1, f.pair.m2, q12, q21, always);
   BOOST_TEST(r.reused_descriptors == 0);  // the entry held the 60-energy descriptors
   BOOST_TEST(q.reused_descriptors == 0);
   BOOST_TEST(r.repair_passes == q.repair_passes);
+  BOOST_TEST(r.automatic_maps_computed);
   BOOST_TEST(r.automatic_maps_kept == q.automatic_maps_kept);
   BOOST_TEST(r12 == q12);
   BOOST_TEST(r21 == q21);

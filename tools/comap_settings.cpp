@@ -240,8 +240,9 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
   p.value("--compare-automatic-above", "X", "with --compare-automatic: compute and compare the automatic maps "
           "only when the given maps' sample distortion (after the repair with --repair) is above X (0: always)",
           shortest(di.automatic_maps_comparison_threshold),
-          [&in](const std::string& v) {
+          [&in, &s](const std::string& v) {
             in.automatic_maps_comparison_threshold = parse_double("--compare-automatic-above", v);
+            s.comparison_threshold_given = true;
           });
   p.value("--init-tear-threshold", "X", "a source edge is torn when its images are this far apart (relative to "
           "sqrt(area) of the target)",
@@ -264,7 +265,7 @@ void add_algorithm_options(Option_parser& p, Settings& s, bool with_initializati
 void check_settings(const Settings& s, bool with_initialization)
 {
   // --compare-automatic sets compare_with_automatic_maps, in match and bench alike.
-  if(s.initialization.automatic_maps_comparison_threshold != 0 && !s.initialization.compare_with_automatic_maps)
+  if(s.comparison_threshold_given && !s.initialization.compare_with_automatic_maps)
     throw Usage_error("--compare-automatic-above needs --compare-automatic");
   try
   {

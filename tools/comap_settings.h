@@ -40,6 +40,7 @@ struct Settings
   bool number_of_candidates_given = false;       ///< --candidates was given
   bool trws_number_of_iterations_given = false;  ///< --trws-iterations was given
   bool consistency_weight_given = false;         ///< --consistency-weight was given
+  bool comparison_threshold_given = false;       ///< --compare-automatic-above was given
 };
 
 /// The value of an automatic switch of Settings (1 on, 0 off, -1 automatic): `preset_value` when
