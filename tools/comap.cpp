@@ -127,7 +127,8 @@ int match(int argc, char** argv)
          "them with landmarks from their consistent core (automatic maps are always repaired, see "
          "--init-repair-passes)", [&] { repair = true; });
   p.flag("--compare-automatic", "given initial maps (after the repair with --repair): compare them with the "
-         "automatic maps of the pair and keep the less distorted ones (the time of one more initialisation)",
+         "automatic maps of the pair and keep the less distorted ones (the time of one more initialisation; maps "
+         "distorted at most --compare-automatic-above are kept without it)",
          [&] { compare = settings.initialization.compare_with_automatic_maps = true; });
   add_algorithm_options(p, settings, true);
   add_common_options(p, common);
