@@ -239,8 +239,7 @@ struct Initialization_settings
   /// ... only when the given maps' sample distortion is above this (0: always). Maps that preserve
   /// the sample distances well are kept without the cost of the automatic initialisation. The
   /// default 0.035 skips it on 77 of the 284 TOSCA_r pairs (repaired WKS maps), which then take
-  /// about half the time: mean time per pair 7.7 s instead of 8.7 s, mean error 0.0247 instead of
-  /// 0.0241 (benchmark/README.md).
+  /// about half the time; mean error 0.0247 instead of 0.0241 (benchmark/README.md).
   double automatic_maps_comparison_threshold = 0.035;
   bool verbose = false;
 };
