@@ -1,0 +1,396 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The inputs of the automatic initialisation: its settings (Initialization_settings, read from the
+// named parameters and checked), the basis sizes and ZoomOut schedules derived from them, the
+// column layout and weights of its descriptors, and the precomputed data of one shape.
+
+#ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_INITIALIZATION_SETTINGS_H
+#define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_INITIALIZATION_SETTINGS_H
+
+#include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/functional_map.h>
+#include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/parameters.h>
+#include <CGAL/Surface_mesh_correspondence/spectrum.h>
+#include <CGAL/Surface_mesh_correspondence/zoomout.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_correspondence {
+namespace internal {
+
+/// One configuration of the functional map fit tried by the initialisation.
+struct Fit_candidate
+{
+  int basis_size;               ///< k0
+  double orientation_weight;    ///< w_o
+  double commutativity_weight;  ///< w_c
+};
+
+/// Every setting of the automatic initialisation, with its default.
+struct Initialization_settings
+{
+  // Basis sizes.
+  /// The fit configurations tried (each in both directions); the best after a short ZoomOut is
+  /// kept. The named parameters spectral_basis_size, orientation_weight and commutativity_weight
+  /// replace the list by a single configuration.
+  /// Candidates larger than zoomout_final_size are skipped.
+  std::vector<Fit_candidate> candidates{{20, 0.03, 0.3}, {15, 0.03, 0.3}, {20, 0.1, 1.0},
+                                        {30, 0.03, 0.3}, {40, 0.1, 1.0},  {60, 0.1, 1.0}};
+  int selection_size = 40;               ///< basis size at which candidates are compared
+  /// How candidates are compared: by the geodesic distortion of their sample maps (true) or by
+  /// the weighted descriptor distance between matched samples (false).
+  bool select_by_distortion = true;
+  /// Farthest-point samples whose pairwise geodesic distances measure the distortion.
+  int distortion_samples = 100;
+  int zoomout_final_size = 200;          ///< k_final
+  /// Basis size at which every pass (the first one and each repair pass) ends its ZoomOut: the
+  /// tears, the distortions and the choice between passes are measured there, and the maps that
+  /// are kept then grow on to zoomout_final_size (grow_initial_maps()).
+  int zoomout_pass_size = 120;
+  int zoomout_step = 5;                  ///< ZoomOut basis growth per iteration
+  /// ZoomOut basis growth per iteration from zoomout_pass_size to zoomout_final_size
+  /// (grow_initial_maps()). Coarser than zoomout_step: the growth costs most at these sizes
+  /// (TOSCA_r, every 8th pair: steps of 5, 10, 20 give 0.0260, 0.0263, 0.0266).
+  int zoomout_growth_step = 10;
+  int number_of_eigenpairs = 0;          ///< eigenpairs computed (0: zoomout_final_size)
+  // Descriptors.
+  int number_of_wks_energies = 100;
+  double wks_variance = 7.0;
+  int number_of_hks_scales = 16;
+  double wks_weight = 1.0;
+  double hks_weight = 0.0;
+  /// Weight of the orientation-sensitive descriptors <n, grad f x grad g> (0: none).
+  double signed_descriptor_weight = 1.0;
+  /// They are smoothed by projection on this many eigenfunctions (0: not smoothed).
+  int signed_descriptor_smoothing = 60;
+  /// Number of descriptors (evenly spread over the columns) that get multiplication and
+  /// orientation operators.
+  int number_of_operator_descriptors = 20;
+  bool normalize_orientation_gradients = true;
+  // Functional map energy (orientation and commutativity weights come from the candidates).
+  Functional_map_weights weights;
+  bool procrustes = true;                ///< replace each fitted map by the nearest orthogonal one
+  // ZoomOut.
+  bool coupled_zoomout = true;
+  double zoomout_bijectivity_weight = 1.0;
+  int zoomout_number_of_samples = 1000;  ///< 0: all vertices in every iteration
+  /// Weight of the descriptor coordinates appended to the ZoomOut embeddings (0: none), and its
+  /// multiplier at the last step.
+  double zoomout_descriptor_weight = 0.0;
+  double zoomout_descriptor_final_ratio = 1.0;
+  /// Use only the signed (orientation-sensitive) descriptors as ZoomOut features.
+  bool zoomout_signed_features_only = true;
+  // Landmarks.
+  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
+  double landmark_descriptor_weight = 50.0;
+  int number_of_landmark_energies = 10;
+  double zoomout_landmark_weight = 0.01;
+  /// With landmarks, the orientations fitted: 0 both (the landmarks choose), +1 or -1 only that
+  /// hypothesis (relative to the meshes' own orientations).
+  int landmark_orientation = 0;
+  // Tear repair.
+  /// Repair passes at most: after each set of maps whose tears cut off more than
+  /// tear_min_fraction of a mesh, the maps are recomputed with landmarks sampled in the core (the
+  /// largest region between the tears) of both maps, and kept when they are less torn.
+  int tear_repair_passes = 2;
+  /// A source edge is torn when its images are at least this far apart (relative to the square
+  /// root of the target's area; at least four mean edge lengths).
+  double tear_threshold = 0.06;
+  double tear_min_fraction = 0.01;
+  /// A tear repair pass is kept only when its maps also distort the geodesic distances of the
+  /// distortion samples (pair_distortion()) at most this fraction more than the maps they replace
+  /// (negative: no check). Landmarks from the core of a map torn over half a mesh can pull the
+  /// repair into an untorn but mirrored map (TOSCA_r michael19 - michael8: 0.067 -> 0.30, its
+  /// distortion +7%).
+  double tear_repair_distortion_tolerance = 0.05;
+  /// Landmarks sampled in the core of each map by a repair pass.
+  int tear_repair_landmarks = 30;
+  // Distortion repair.
+  /// Distortion repair passes at most (0, the default: none; each pass costs about as much as the
+  /// first one): after the tear repair, the maps are recomputed with
+  /// landmarks from their isometric core (the largest set of samples whose pairwise geodesic
+  /// distances the map preserves, see distortion_core()), with all the fit configurations of the
+  /// first pass, and kept when they distort the sample distances less (distortion_repair_gain).
+  int distortion_repair_passes = 0;
+  /// Two samples agree when the map changes their geodesic distance by less than this (relative to
+  /// the square root of the areas)...
+  double distortion_core_tolerance = 0.04;
+  /// ... and the core is the largest set found in which every sample agrees with this fraction of
+  /// the others.
+  double distortion_core_agreement = 0.9;
+  /// Maps whose sample distortion (mean of both directions) is at most this are kept as they are.
+  double distortion_repair_threshold = 0.035;
+  /// New maps are kept only when their sample distortion is lower by at least this fraction: on
+  /// shapes whose poses stretch the surface the ground truth is not the most isometric map, and
+  /// small gains in isometry are as often losses in accuracy.
+  double distortion_repair_gain = 0.2;
+  /// Passes in all (the first one, tear repair and distortion repair): the distortion repair runs
+  /// only while this allows.
+  int maximum_passes = 3;
+  /// The fit configurations of the repair passes (the landmarks constrain the fits, so fewer are
+  /// needed); empty: those of the first pass.
+  std::vector<Fit_candidate> repair_candidates{{20, 0.03, 0.3}, {40, 0.1, 1.0}};
+  /// repair_given_maps() only: after the repairs, the given maps compete with the automatic maps
+  /// of the pair (automatic_initial_maps() run on the same shapes); the pair of maps whose sample
+  /// maps distort geodesic distances less is kept.
+  bool compare_with_automatic_maps = false;
+  /// ... only when the given maps' sample distortion is above this (0: always). Maps that preserve
+  /// the sample distances well are kept without the cost of the automatic initialisation. The
+  /// default 0.035 skips it on 77 of the 284 TOSCA_r pairs (repaired WKS maps), which then take
+  /// about half the time; mean error 0.0247 instead of 0.0241 (benchmark/README.md).
+  double automatic_maps_comparison_threshold = 0.035;
+  bool verbose = false;
+};
+
+/// Reads the named parameters of automatic_initial_maps() into settings.
+template <typename NamedParameters>
+Initialization_settings initialization_settings(const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using parameters::is_default_parameter;
+  Initialization_settings s;
+  s.zoomout_final_size = choose_parameter(get_parameter(np, internal_np::zoomout_final_size),
+                                          s.zoomout_final_size);
+  s.zoomout_pass_size = choose_parameter(get_parameter(np, internal_np::zoomout_pass_size), s.zoomout_pass_size);
+  s.zoomout_step = choose_parameter(get_parameter(np, internal_np::zoomout_step), s.zoomout_step);
+  s.zoomout_growth_step = choose_parameter(get_parameter(np, internal_np::zoomout_growth_step), s.zoomout_growth_step);
+  s.number_of_eigenpairs = choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs),
+                                            s.number_of_eigenpairs);
+  s.number_of_wks_energies = choose_parameter(get_parameter(np, internal_np::number_of_wks_energies),
+                                              s.number_of_wks_energies);
+  s.wks_variance = choose_parameter(get_parameter(np, internal_np::wks_variance), s.wks_variance);
+  s.number_of_hks_scales = choose_parameter(get_parameter(np, internal_np::number_of_hks_scales),
+                                            s.number_of_hks_scales);
+  s.wks_weight = choose_parameter(get_parameter(np, internal_np::wks_weight), s.wks_weight);
+  s.hks_weight = choose_parameter(get_parameter(np, internal_np::hks_weight), s.hks_weight);
+  if(!is_default_parameter<NamedParameters, internal_np::spectral_basis_size_t>::value ||
+     !is_default_parameter<NamedParameters, internal_np::orientation_weight_t>::value ||
+     !is_default_parameter<NamedParameters, internal_np::commutativity_weight_t>::value)
+  {
+    Fit_candidate c = s.candidates.front();
+    c.basis_size = choose_parameter(get_parameter(np, internal_np::spectral_basis_size), c.basis_size);
+    c.orientation_weight = choose_parameter(get_parameter(np, internal_np::orientation_weight),
+                                            c.orientation_weight);
+    c.commutativity_weight = choose_parameter(get_parameter(np, internal_np::commutativity_weight),
+                                              c.commutativity_weight);
+    s.candidates.assign(1, c);
+  }
+  s.tear_repair_passes = choose_parameter(get_parameter(np, internal_np::number_of_repair_passes),
+                                          s.tear_repair_passes);
+  s.tear_threshold = choose_parameter(get_parameter(np, internal_np::tear_threshold), s.tear_threshold);
+  s.tear_repair_distortion_tolerance = choose_parameter(
+      get_parameter(np, internal_np::tear_repair_distortion_tolerance), s.tear_repair_distortion_tolerance);
+  s.distortion_repair_passes = choose_parameter(
+      get_parameter(np, internal_np::number_of_distortion_repair_passes), s.distortion_repair_passes);
+  s.compare_with_automatic_maps = choose_parameter(get_parameter(np, internal_np::compare_with_automatic_maps),
+                                                   s.compare_with_automatic_maps);
+  s.automatic_maps_comparison_threshold = choose_parameter(
+      get_parameter(np, internal_np::automatic_maps_comparison_threshold), s.automatic_maps_comparison_threshold);
+  s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
+  const auto& landmarks = get_parameter(np, internal_np::landmarks);
+  if constexpr(!std::is_same<typename std::decay<decltype(landmarks)>::type,
+                             CGAL::internal_np::Param_not_found>::value)
+  {
+    for(const auto& l : landmarks)
+      s.landmarks.emplace_back(static_cast<std::size_t>(l.first), static_cast<std::size_t>(l.second));
+  }
+  return s;
+}
+
+/// The largest candidate basis size that is tried (candidates above zoomout_final_size are skipped).
+inline int largest_candidate_size(const Initialization_settings& s)
+{
+  int k = 0;
+  for(const Fit_candidate& c : s.candidates)
+    if(c.basis_size <= s.zoomout_final_size) k = std::max(k, c.basis_size);
+  return k;
+}
+
+/// Checks the settings against each other (not against the meshes).
+inline void check_initialization_settings(const Initialization_settings& s)
+{
+  auto fail = [](const std::string& what) {
+    throw Invalid_parameter_error("automatic_initial_maps: " + what);
+  };
+  if(s.candidates.empty()) fail("no functional map configuration to try");
+  for(const Fit_candidate& c : s.candidates)
+  {
+    if(c.basis_size < 2)
+      fail("spectral_basis_size = " + std::to_string(c.basis_size) + " must be at least 2");
+    if(!(c.orientation_weight >= 0) || !(c.commutativity_weight >= 0) || !std::isfinite(c.orientation_weight) ||
+       !std::isfinite(c.commutativity_weight))
+      fail("orientation_weight and commutativity_weight must be finite and non-negative");
+  }
+  if(largest_candidate_size(s) == 0)
+  {
+    int smallest = s.candidates.front().basis_size;
+    for(const Fit_candidate& c : s.candidates) smallest = std::min(smallest, c.basis_size);
+    fail("zoomout_final_size = " + std::to_string(s.zoomout_final_size) +
+         " must be at least spectral_basis_size = " + std::to_string(smallest));
+  }
+  if((s.select_by_distortion || s.distortion_repair_passes > 0) && s.distortion_samples < 2)
+    fail("distortion_samples = " + std::to_string(s.distortion_samples) + " must be at least 2");
+  if(s.zoomout_step < 1) fail("zoomout_step = " + std::to_string(s.zoomout_step) + " must be positive");
+  if(s.zoomout_growth_step < 1)
+    fail("zoomout_growth_step = " + std::to_string(s.zoomout_growth_step) + " must be positive");
+  if(s.zoomout_pass_size < 2)
+    fail("zoomout_pass_size = " + std::to_string(s.zoomout_pass_size) + " must be at least 2");
+  if(s.number_of_eigenpairs != 0 && s.number_of_eigenpairs < s.zoomout_final_size)
+    fail("number_of_eigenpairs = " + std::to_string(s.number_of_eigenpairs) +
+         " is smaller than zoomout_final_size = " + std::to_string(s.zoomout_final_size));
+  if(!(s.wks_weight >= 0) || !(s.hks_weight >= 0) || !(s.wks_weight + s.hks_weight > 0))
+    fail("the descriptor weights (wks_weight, hks_weight) must be non-negative, one of them positive");
+  if(s.wks_weight > 0 && s.number_of_wks_energies < 2)
+    fail("number_of_wks_energies must be at least 2");
+  if(s.hks_weight > 0 && s.number_of_hks_scales < 1) fail("number_of_hks_scales must be positive");
+  if(!(s.signed_descriptor_weight >= 0)) fail("the signed descriptor weight must be non-negative");
+  if(!(s.weights.laplacian >= 0) || !(s.weights.descriptor > 0)) fail("invalid functional map weights");
+  if(s.landmark_orientation < -1 || s.landmark_orientation > 1) fail("landmark_orientation must be -1, 0 or 1");
+  if(s.tear_repair_passes < 0) fail("tear_repair_passes must be non-negative");
+  if(s.distortion_repair_passes < 0) fail("distortion_repair_passes must be non-negative");
+  if(!(s.automatic_maps_comparison_threshold >= 0) || !std::isfinite(s.automatic_maps_comparison_threshold))
+    fail("automatic_maps_comparison_threshold = " + std::to_string(s.automatic_maps_comparison_threshold) +
+         " must be finite and non-negative");
+  if(!(s.distortion_core_tolerance > 0) || !std::isfinite(s.distortion_core_tolerance))
+    fail("distortion_core_tolerance must be positive");
+  if(!(s.distortion_core_agreement > 0) || !(s.distortion_core_agreement <= 1))
+    fail("distortion_core_agreement must be in (0, 1]");
+  if(!(s.distortion_repair_threshold >= 0) || !std::isfinite(s.distortion_repair_threshold))
+    fail("distortion_repair_threshold must be non-negative");
+  if(s.maximum_passes < 1) fail("maximum_passes must be positive");
+  if(!(s.distortion_repair_gain >= 0) || !(s.distortion_repair_gain < 1))
+    fail("distortion_repair_gain must be in [0, 1)");
+  if(!(s.tear_threshold > 0) || !std::isfinite(s.tear_threshold)) fail("tear_threshold must be positive");
+  if(!(s.tear_min_fraction >= 0) || !(s.tear_min_fraction < 1)) fail("tear_min_fraction must be in [0, 1)");
+  if(!std::isfinite(s.tear_repair_distortion_tolerance)) fail("tear_repair_distortion_tolerance must be finite");
+  if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
+}
+
+/// The number of eigenpairs the initialisation needs.
+inline int initialization_number_of_eigenpairs(const Initialization_settings& s)
+{
+  return s.number_of_eigenpairs > 0 ? s.number_of_eigenpairs : s.zoomout_final_size;
+}
+
+/// The basis size at which the fit candidates are compared: selection_size, at least the largest
+/// candidate, at most zoomout_final_size.
+inline int selection_basis_size(const Initialization_settings& s)
+{
+  return std::min(std::max(s.selection_size, largest_candidate_size(s)), s.zoomout_final_size);
+}
+
+/// The basis size at which every pass ends its ZoomOut: zoomout_pass_size, at least
+/// selection_basis_size(), at most zoomout_final_size.
+inline int pass_final_size(const Initialization_settings& s)
+{
+  return std::min(s.zoomout_final_size, std::max(s.zoomout_pass_size, selection_basis_size(s)));
+}
+
+/// The ZoomOut schedule of the initialisation from `step` to `final_size`.
+inline Zoomout_settings initialization_zoomout_settings(const Initialization_settings& s, int step, int final_size)
+{
+  Zoomout_settings zs;
+  zs.step = step;
+  zs.final_size = final_size;
+  zs.landmark_weight = s.zoomout_landmark_weight;
+  zs.bijectivity_weight = s.zoomout_bijectivity_weight;
+  zs.feature_final_ratio = s.zoomout_descriptor_final_ratio;
+  return zs;
+}
+
+/// Column layout of initialization_descriptors(): d_wks WKS columns, d_hks HKS columns, then the
+/// signed descriptors of the pairs below.
+struct Initialization_descriptor_layout
+{
+  int wks = 0, hks = 0;
+  std::vector<std::pair<int, int> > signed_pairs;  ///< pairs of (WKS or HKS) columns
+  int plain() const { return wks + hks; }
+  int total() const { return plain() + static_cast<int>(signed_pairs.size()); }
+};
+
+inline Initialization_descriptor_layout initialization_descriptor_layout(const Initialization_settings& s)
+{
+  Initialization_descriptor_layout l;
+  const bool with_signed = s.signed_descriptor_weight > 0 && s.number_of_wks_energies >= 2 &&
+                           s.number_of_hks_scales >= 2;
+  l.wks = (s.wks_weight > 0 || with_signed) ? s.number_of_wks_energies : 0;
+  l.hks = (s.hks_weight > 0 || with_signed) ? s.number_of_hks_scales : 0;
+  if(with_signed)
+  {
+    // Pairs of smooth, large-scale functions (WKS at low energies, HKS at long times) and a few
+    // mid-range WKS pairs; these were the most consistent across the poses and people of FAUST_r
+    // (correlation of the values at ground-truth correspondences, benchmark/bench_init.cpp).
+    auto wks = [&](double f) { return static_cast<int>(std::lround(f * (l.wks - 1))); };
+    auto hks = [&](double f) { return l.wks + static_cast<int>(std::lround(f * (l.hks - 1))); };
+    const std::pair<int, int> pairs[] = {{wks(0.3), wks(0.7)}, {wks(0.0), hks(1.0)}, {hks(2.0 / 3.0), hks(1.0)},
+                                         {wks(0.05), hks(1.0)}, {wks(0.05), hks(2.0 / 3.0)}, {wks(0.0), wks(0.05)},
+                                         {wks(0.7), wks(0.9)}, {wks(0.1), wks(0.2)}};
+    for(const auto& p : pairs)
+      if(p.first != p.second) l.signed_pairs.push_back(p);
+  }
+  return l;
+}
+
+/// The column weights matching initialization_descriptors().
+inline Eigen::VectorXd initialization_descriptor_weights(const Initialization_settings& s)
+{
+  const Initialization_descriptor_layout l = initialization_descriptor_layout(s);
+  Eigen::VectorXd w(l.total());
+  w.head(l.wks).setConstant(std::max(0.0, s.wks_weight));
+  w.segment(l.wks, l.hks).setConstant(std::max(0.0, s.hks_weight));
+  w.tail(l.signed_pairs.size()).setConstant(s.signed_descriptor_weight);
+  return w;
+}
+
+/// What the core needs of one shape; the stateful shape class precomputes it once per mesh.
+struct Initialization_shape
+{
+  const Indexed_mesh* mesh = nullptr;
+  const Laplace_beltrami_spectrum* spectrum = nullptr;
+  /// n x d descriptors (initialization_descriptors()); columns correspond across shapes.
+  const Eigen::MatrixXd* descriptors = nullptr;
+};
+
+/// Checks one shape against the settings.
+inline void check_initialization_shape(const Initialization_shape& shape, int k, const std::string& name)
+{
+  if(!shape.mesh || !shape.spectrum || !shape.descriptors)
+    throw Invalid_parameter_error("automatic_initial_maps: missing data for " + name);
+  const Indexed_mesh& m = *shape.mesh;
+  if(m.number_of_components != 1)
+    throw Invalid_mesh_error("automatic_initial_maps: " + name + " has " +
+                             std::to_string(m.number_of_components) +
+                             " connected components; the spectral initialisation needs a connected "
+                             "mesh (keep the largest component, e.g. with "
+                             "CGAL::Polygon_mesh_processing::keep_largest_connected_components)");
+  if(m.number_of_vertices() <= k)
+    throw Invalid_mesh_error("automatic_initial_maps: " + name + " has " +
+                             std::to_string(m.number_of_vertices()) + " vertices, too few for a basis of " +
+                             std::to_string(k) + " eigenfunctions (reduce zoomout_final_size)");
+  if(shape.spectrum->number_of_vertices() != m.number_of_vertices() ||
+     shape.descriptors->rows() != m.number_of_vertices())
+    throw Invalid_parameter_error("automatic_initial_maps: the spectrum or descriptors of " + name +
+                                  " do not match its vertices");
+  if(shape.spectrum->number_of_eigenpairs() < k)
+    throw Invalid_parameter_error("automatic_initial_maps: the spectrum of " + name + " has " +
+                                  std::to_string(shape.spectrum->number_of_eigenpairs()) +
+                                  " eigenpairs, fewer than zoomout_final_size = " + std::to_string(k));
+}
+
+} // namespace internal
+} // namespace Surface_mesh_correspondence
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_INITIALIZATION_SETTINGS_H
