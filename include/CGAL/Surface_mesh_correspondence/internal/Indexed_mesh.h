@@ -80,14 +80,18 @@ inline std::string mesh_label(const std::string& name)
   return name.empty() ? std::string("mesh") : name;
 }
 
-/// Fills adjacency, incidence, edges, areas and components from `points` and `triangles`, and
-/// checks the mesh. Throws Invalid_mesh_error naming the first problem found.
-inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
-                                  const std::string& name = "mesh")
+/// The root of x in a union-find forest, with path halving.
+inline int union_find_root(std::vector<int>& parent, int x)
+{
+  while(parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+/// Checks that the mesh has vertices and faces and that all coordinates are finite.
+inline void check_indexed_mesh_points(const Indexed_mesh& m, const std::string& label)
 {
   const int n = m.number_of_vertices();
   const int nf = m.number_of_triangles();
-  const std::string label = mesh_label(name);
   if(n == 0 || nf == 0)
     throw Invalid_mesh_error(label + " is empty (" + std::to_string(n) + " vertices, " +
                              std::to_string(nf) + " faces)");
@@ -96,8 +100,13 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
       if(!std::isfinite(m.points(v, c)))
         throw Invalid_mesh_error(label + ": vertex " + std::to_string(v) +
                                  " has a non-finite coordinate (NaN or infinity)");
+}
 
-  // Incident triangles (CSR).
+/// Fills the incident triangles of the vertices (CSR), checking the faces' vertex indices.
+inline void fill_incident_triangles(Indexed_mesh& m, const std::string& label)
+{
+  const int n = m.number_of_vertices();
+  const int nf = m.number_of_triangles();
   m.triangle_offsets.assign(n + 1, 0);
   for(int f = 0; f < nf; ++f)
     for(int c = 0; c < 3; ++c)
@@ -110,14 +119,17 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
     }
   std::partial_sum(m.triangle_offsets.begin(), m.triangle_offsets.end(), m.triangle_offsets.begin());
   m.incident_triangles.resize(m.triangle_offsets[n]);
-  {
-    std::vector<int> fill(m.triangle_offsets.begin(), m.triangle_offsets.end() - 1);
-    for(int f = 0; f < nf; ++f)
-      for(int c = 0; c < 3; ++c)
-        m.incident_triangles[fill[m.triangles(f, c)]++] = f;
-  }
+  std::vector<int> fill(m.triangle_offsets.begin(), m.triangle_offsets.end() - 1);
+  for(int f = 0; f < nf; ++f)
+    for(int c = 0; c < 3; ++c)
+      m.incident_triangles[fill[m.triangles(f, c)]++] = f;
+}
 
-  // Triangle areas and degenerate faces.
+/// Fills the triangle areas and the total area, rejecting faces that repeat a vertex or have zero
+/// area.
+inline void fill_triangle_areas(Indexed_mesh& m, const std::string& label)
+{
+  const int nf = m.number_of_triangles();
   m.triangle_areas.resize(nf);
   m.total_area = 0;
   for(int f = 0; f < nf; ++f)
@@ -134,9 +146,80 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
     m.triangle_areas[f] = 0.5 * twice_area;
     m.total_area += m.triangle_areas[f];
   }
+}
 
-  // Manifoldness: around every vertex, the opposite edges of its triangles (its link) must form
-  // a single path or cycle in which no vertex appears more than twice.
+/// Throws unless the link edges of vertex v (the opposite edges of its triangles) join all its
+/// neighbours `unique_ring` (sorted) into one path or cycle: else v is a pinched, non-manifold
+/// vertex.
+inline void check_link_connected(int v, const std::vector<std::array<int, 2> >& link,
+                                 const std::vector<int>& unique_ring, const std::string& label)
+{
+  const int degree = static_cast<int>(unique_ring.size());
+  std::vector<int> parent(degree);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto local = [&](int w) {
+    return static_cast<int>(std::lower_bound(unique_ring.begin(), unique_ring.end(), w) -
+                            unique_ring.begin());
+  };
+  int groups = degree;
+  for(const auto& e : link)
+  {
+    const int ra = union_find_root(parent, local(e[0])), rb = union_find_root(parent, local(e[1]));
+    if(ra != rb)
+    {
+      parent[ra] = rb;
+      --groups;
+    }
+  }
+  if(groups != 1)
+    throw Invalid_mesh_error(label + " is not manifold: vertex " + std::to_string(v) +
+                             " joins several separate fans of faces");
+}
+
+/// The neighbours of vertex v (not isolated), sorted, into `unique_ring`, checked for
+/// manifoldness: each appears once (boundary edge, counted in `boundary_edges2`) or twice
+/// (interior edge) in the link of v, and the link is connected. `ring` and `link` are workspaces.
+inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& label, std::vector<int>& ring,
+                            std::vector<std::array<int, 2> >& link, std::vector<int>& unique_ring,
+                            int& boundary_edges2)
+{
+  ring.clear();
+  link.clear();
+  for(int k = m.triangle_offsets[v]; k < m.triangle_offsets[v + 1]; ++k)
+  {
+    const int f = m.incident_triangles[k];
+    int c = 0;
+    while(m.triangles(f, c) != v) ++c;
+    const int a = m.triangles(f, (c + 1) % 3), b = m.triangles(f, (c + 2) % 3);
+    link.push_back({a, b});
+    ring.push_back(a);
+    ring.push_back(b);
+  }
+  std::sort(ring.begin(), ring.end());
+  // Each neighbour appears once (boundary) or twice (interior) in the link.
+  for(std::size_t k = 0; k < ring.size();)
+  {
+    std::size_t e = k;
+    while(e < ring.size() && ring[e] == ring[k]) ++e;
+    const std::size_t multiplicity = e - k;
+    if(multiplicity > 2)
+      throw Invalid_mesh_error(label + " is not manifold: the edge (" + std::to_string(v) + ", " +
+                               std::to_string(ring[k]) + ") or vertex " + std::to_string(v) +
+                               " is shared by more than two faces");
+    if(multiplicity == 1) ++boundary_edges2;
+    unique_ring.push_back(ring[k]);
+    k = e;
+  }
+  // The link must be connected (else v is a pinched, non-manifold vertex).
+  check_link_connected(v, link, unique_ring, label);
+}
+
+/// Fills the one-ring neighbours (CSR) and the number of boundary edges. Manifoldness: around
+/// every vertex, the opposite edges of its triangles (its link) must form a single path or cycle
+/// in which no vertex appears more than twice.
+inline void fill_neighbors(Indexed_mesh& m, const Mesh_requirements& req, const std::string& label)
+{
+  const int n = m.number_of_vertices();
   m.neighbor_offsets.assign(n + 1, 0);
   std::vector<int> ring;                    // neighbours of v, with multiplicity
   std::vector<std::array<int, 2> > link;    // link edges of v
@@ -144,68 +227,15 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
   int boundary_edges2 = 0;                  // counts each boundary edge twice (once per endpoint)
   for(int v = 0; v < n; ++v)
   {
-    const int fb = m.triangle_offsets[v], fe = m.triangle_offsets[v + 1];
-    if(fb == fe)
+    if(m.triangle_offsets[v] == m.triangle_offsets[v + 1])
     {
       if(!req.allow_isolated_vertices)
         throw Invalid_mesh_error(label + ": vertex " + std::to_string(v) +
                                  " is isolated (it belongs to no face)");
       continue;
     }
-    ring.clear();
-    link.clear();
-    for(int k = fb; k < fe; ++k)
-    {
-      const int f = m.incident_triangles[k];
-      int c = 0;
-      while(m.triangles(f, c) != v) ++c;
-      const int a = m.triangles(f, (c + 1) % 3), b = m.triangles(f, (c + 2) % 3);
-      link.push_back({a, b});
-      ring.push_back(a);
-      ring.push_back(b);
-    }
-    std::sort(ring.begin(), ring.end());
-    // Each neighbour appears once (boundary) or twice (interior) in the link.
-    std::vector<int>& unique_ring = rings[v];
-    for(std::size_t k = 0; k < ring.size();)
-    {
-      std::size_t e = k;
-      while(e < ring.size() && ring[e] == ring[k]) ++e;
-      const std::size_t multiplicity = e - k;
-      if(multiplicity > 2)
-        throw Invalid_mesh_error(label + " is not manifold: the edge (" + std::to_string(v) + ", " +
-                                 std::to_string(ring[k]) + ") or vertex " + std::to_string(v) +
-                                 " is shared by more than two faces");
-      if(multiplicity == 1) ++boundary_edges2;
-      unique_ring.push_back(ring[k]);
-      k = e;
-    }
-    // The link must be connected (else v is a pinched, non-manifold vertex).
-    const int degree = static_cast<int>(unique_ring.size());
-    std::vector<int> parent(degree);
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](int x) {
-      while(parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    auto local = [&](int w) {
-      return static_cast<int>(std::lower_bound(unique_ring.begin(), unique_ring.end(), w) -
-                              unique_ring.begin());
-    };
-    int groups = degree;
-    for(const auto& e : link)
-    {
-      const int ra = find(local(e[0])), rb = find(local(e[1]));
-      if(ra != rb)
-      {
-        parent[ra] = rb;
-        --groups;
-      }
-    }
-    if(groups != 1)
-      throw Invalid_mesh_error(label + " is not manifold: vertex " + std::to_string(v) +
-                               " joins several separate fans of faces");
-    m.neighbor_offsets[v + 1] = degree;
+    vertex_one_ring(m, v, label, ring, link, rings[v], boundary_edges2);
+    m.neighbor_offsets[v + 1] = static_cast<int>(rings[v].size());
   }
   std::partial_sum(m.neighbor_offsets.begin(), m.neighbor_offsets.end(), m.neighbor_offsets.begin());
   m.neighbors.resize(m.neighbor_offsets[n]);
@@ -215,24 +245,28 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
   if(!req.allow_boundary && m.number_of_boundary_edges > 0)
     throw Invalid_mesh_error(label + " has a boundary (" + std::to_string(m.number_of_boundary_edges) +
                              " boundary edges) but a closed mesh is required");
+}
 
-  // Edges.
+/// Fills the undirected edges (i < j), sorted lexicographically.
+inline void fill_edges(Indexed_mesh& m)
+{
+  const int n = m.number_of_vertices();
   m.edges.clear();
   m.edges.reserve(m.neighbors.size() / 2);
   for(int v = 0; v < n; ++v)
     for(const int* w = m.neighbors_begin(v); w != m.neighbors_end(v); ++w)
       if(v < *w) m.edges.push_back({v, *w});
+}
 
-  // Connected components (union-find over edges).
+/// Fills the connected components (union-find over the edges, numbered by their first vertex).
+inline void fill_components(Indexed_mesh& m, const Mesh_requirements& req, const std::string& label)
+{
+  const int n = m.number_of_vertices();
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while(parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
   for(const auto& e : m.edges)
   {
-    const int a = find(e[0]), b = find(e[1]);
+    const int a = union_find_root(parent, e[0]), b = union_find_root(parent, e[1]);
     if(a != b) parent[std::max(a, b)] = std::min(a, b);
   }
   m.component.assign(n, -1);
@@ -240,7 +274,7 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
   std::vector<int> root_label(n, -1);
   for(int v = 0; v < n; ++v)
   {
-    const int r = find(v);
+    const int r = union_find_root(parent, v);
     if(root_label[r] < 0) root_label[r] = m.number_of_components++;
     m.component[v] = root_label[r];
   }
@@ -249,6 +283,20 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
                              " connected components but a connected mesh is required (keep the "
                              "largest one, e.g. with "
                              "CGAL::Polygon_mesh_processing::keep_largest_connected_components)");
+}
+
+/// Fills adjacency, incidence, edges, areas and components from `points` and `triangles`, and
+/// checks the mesh. Throws Invalid_mesh_error naming the first problem found.
+inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
+                                  const std::string& name = "mesh")
+{
+  const std::string label = mesh_label(name);
+  check_indexed_mesh_points(m, label);
+  fill_incident_triangles(m, label);
+  fill_triangle_areas(m, label);
+  fill_neighbors(m, req, label);
+  fill_edges(m);
+  fill_components(m, req, label);
 }
 
 /// Builds and checks the flat copy of `tm`. Vertex i of the copy is the vertex whose index in the
