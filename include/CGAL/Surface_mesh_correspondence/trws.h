@@ -1132,6 +1132,216 @@ auto trws_vertex_index_map(const Graph& g, const NamedParameters& np)
     return get(boost::vertex_index, g);
 }
 
+
+/// The nodes of trws_labeling(): the vertices in the order of the vertex index map and their
+/// numbers of labels.
+template <typename VertexDescriptor>
+struct Trws_graph_nodes
+{
+  std::vector<VertexDescriptor> vertex_of;
+  std::vector<std::size_t> label_count;
+};
+
+/// Numbers the vertices of `g` by the vertex index map, which must be a bijection onto [0, n),
+/// and reads their numbers of labels (at least 1).
+template <typename Graph, typename VertexIndexMap, typename LabelCountMap>
+Trws_graph_nodes<typename boost::graph_traits<Graph>::vertex_descriptor>
+trws_graph_nodes(const Graph& g, const VertexIndexMap& vertex_index, LabelCountMap& label_counts)
+{
+  typedef typename boost::graph_traits<Graph>::vertex_descriptor vertex_descriptor;
+  const std::size_t n = static_cast<std::size_t>(num_vertices(g));
+  Trws_graph_nodes<vertex_descriptor> nodes;
+  nodes.vertex_of.resize(n);
+  nodes.label_count.resize(n);
+  std::vector<unsigned char> seen(n, 0);
+  std::size_t visited = 0;
+  for(vertex_descriptor v : make_range(vertices(g)))
+  {
+    const auto i = get(vertex_index, v);
+    if(!trws_index_in_range(i, n) || seen[std::size_t(i)])
+      throw Invalid_parameter_error(
+          trws_message("trws_labeling: the vertex index map is not a bijection onto [0, ", n,
+                       ") (index ", i, "); pass an initialised vertex_index_map"));
+    seen[std::size_t(i)] = 1;
+    nodes.vertex_of[std::size_t(i)] = v;
+    const auto k = get(label_counts, v);
+    if(!(k >= 1))
+      throw Invalid_energy_error(trws_message("trws_labeling: vertex ", i, " has no label"));
+    nodes.label_count[std::size_t(i)] = static_cast<std::size_t>(k);
+    ++visited;
+  }
+  if(visited != n)
+    throw Invalid_parameter_error(trws_message("trws_labeling: vertices(g) has ", visited,
+                                               " vertices but num_vertices(g) is ", n));
+  return nodes;
+}
+
+/// The edges of trws_labeling(): parallel graph edges are merged into one flat edge, whose
+/// members are the graph edges of its group.
+template <typename EdgeDescriptor>
+struct Trws_graph_edges
+{
+  /// The node indices of each graph edge, in the order of edges(g).
+  std::vector<std::pair<std::size_t, std::size_t> > ends;
+  /// The merged edges, numbered by (smaller, larger) node index; each keeps the orientation of its
+  /// first graph edge.
+  std::vector<std::pair<std::size_t, std::size_t> > flat_edges;
+  /// Flat edge f stands for members[member_offsets[f] .. member_offsets[f + 1]).
+  std::vector<std::size_t> member_offsets;
+  std::vector<EdgeDescriptor> members;
+  std::vector<unsigned char> flipped;     ///< the member runs against its flat edge
+  std::vector<std::size_t> member_edge;   ///< the member's index in `ends`
+};
+
+/// Reads the edges of `g` (no self-loops) and merges the parallel ones; the first one of a group
+/// (in the order of edges(g)) gives the orientation of the merged edge.
+template <typename Graph, typename VertexIndexMap>
+Trws_graph_edges<typename boost::graph_traits<Graph>::edge_descriptor>
+trws_graph_edges(const Graph& g, const VertexIndexMap& vertex_index)
+{
+  typedef typename boost::graph_traits<Graph>::edge_descriptor edge_descriptor;
+  Trws_graph_edges<edge_descriptor> r;
+  std::vector<edge_descriptor> graph_edges;
+  std::vector<std::pair<std::size_t, std::size_t> >& ends = r.ends;
+  for(edge_descriptor e : make_range(edges(g)))
+  {
+    const std::size_t s = std::size_t(get(vertex_index, source(e, g)));
+    const std::size_t t = std::size_t(get(vertex_index, target(e, g)));
+    if(s == t) throw Invalid_energy_error(trws_message("trws_labeling: self-loop at vertex ", s));
+    graph_edges.push_back(e);
+    ends.emplace_back(s, t);
+  }
+  const std::size_t m = ends.size();
+  std::vector<std::size_t> order(m);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  auto key = [&](std::size_t i) {
+    return std::make_pair((std::min)(ends[i].first, ends[i].second),
+                          (std::max)(ends[i].first, ends[i].second));
+  };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return key(a) < key(b) || (key(a) == key(b) && a < b);
+  });
+  // Merged edges are numbered by (smaller, larger) vertex index, so that the forward pass reads
+  // their tables in storage order; each keeps the orientation of its first graph edge.
+  std::vector<std::size_t> representative(m); // first edge of each graph edge's group
+  std::vector<std::size_t> group(m, std::size_t(-1));
+  for(std::size_t j = 0; j < m; ++j)
+  {
+    const std::size_t i = order[j];
+    if(j > 0 && key(order[j - 1]) == key(i))
+      representative[i] = representative[order[j - 1]];
+    else
+    {
+      representative[i] = i;
+      group[i] = r.flat_edges.size();
+      r.flat_edges.push_back(ends[i]);
+    }
+  }
+  const std::size_t flat_m = r.flat_edges.size();
+  r.member_offsets.assign(flat_m + 1, 0);
+  for(std::size_t i = 0; i < m; ++i) ++r.member_offsets[group[representative[i]] + 1];
+  for(std::size_t f = 0; f < flat_m; ++f) r.member_offsets[f + 1] += r.member_offsets[f];
+  r.members.resize(m);
+  r.flipped.resize(m);
+  r.member_edge.resize(m);
+  std::vector<std::size_t> fill(r.member_offsets.begin(), r.member_offsets.end() - 1);
+  for(std::size_t i = 0; i < m; ++i)
+  {
+    const std::size_t f = group[representative[i]], slot = fill[f]++;
+    r.members[slot] = graph_edges[i];
+    r.member_edge[slot] = i;
+    r.flipped[slot] = (ends[i].first != r.flat_edges[f].first) ? 1 : 0;
+  }
+  return r;
+}
+
+/// Copies the unary costs of the nodes into `energy`, checking their sizes and values.
+template <typename FT, typename Energy, typename UnaryCostMap, typename VertexDescriptor>
+void trws_fill_unary_costs(Energy& energy, UnaryCostMap& unary_costs, const Trws_graph_nodes<VertexDescriptor>& nodes)
+{
+  for(std::size_t i = 0; i < nodes.vertex_of.size(); ++i)
+  {
+    auto&& costs = get(unary_costs, nodes.vertex_of[i]);
+    const std::size_t size = static_cast<std::size_t>(boost::size(costs));
+    if(size != nodes.label_count[i])
+      throw Invalid_energy_error(trws_message("trws_labeling: vertex ", i, " has ",
+                                              nodes.label_count[i], " labels but ", size,
+                                              " unary costs"));
+    auto first = boost::begin(costs);
+    FT* out = energy.unary_costs(i);
+    for(std::size_t k = 0; k < size; ++k)
+    {
+      const double c = double(first[k]);
+      if(!std::isfinite(c))
+        throw Invalid_energy_error(trws_message("trws_labeling: unary cost of vertex ", i,
+                                                ", label ", k, " is ", c,
+                                                " (costs must be finite)"));
+      out[k] = FT(c);
+    }
+  }
+}
+
+/// Adds the pairwise tables of the graph edges to those of their flat edges in `energy` (the
+/// tables of members running against their flat edge are transposed), checking sizes and values.
+template <typename FT, typename PairwiseCostMap, typename VertexDescriptor, typename EdgeDescriptor>
+void trws_fill_pairwise_tables(Discrete_energy<FT>& energy, PairwiseCostMap& pairwise_costs,
+                               const Trws_graph_nodes<VertexDescriptor>& nodes,
+                               const Trws_graph_edges<EdgeDescriptor>& edges)
+{
+  const std::vector<std::size_t>& label_count = nodes.label_count;
+  const std::vector<std::pair<std::size_t, std::size_t> >& ends = edges.ends;
+  for(std::size_t f = 0; f < edges.flat_edges.size(); ++f)
+  {
+    const std::size_t ks = label_count[edges.flat_edges[f].first],
+                      kt = label_count[edges.flat_edges[f].second];
+    FT* table = energy.pairwise_costs(f);
+    for(std::size_t j = edges.member_offsets[f]; j < edges.member_offsets[f + 1]; ++j)
+    {
+      const std::size_t i = edges.member_edge[j];
+      auto&& costs = get(pairwise_costs, edges.members[j]);
+      const std::size_t size = static_cast<std::size_t>(boost::size(costs));
+      if(size != ks * kt)
+        throw Invalid_energy_error(trws_message(
+            "trws_labeling: the pairwise table of edge (", ends[i].first, ", ", ends[i].second,
+            ") has ", size, " costs instead of ", label_count[ends[i].first], " x ",
+            label_count[ends[i].second], " = ", ks * kt));
+      auto first = boost::begin(costs);
+      const std::size_t cols = label_count[ends[i].second]; // columns in the graph edge's order
+      for(std::size_t k = 0; k < ks; ++k)
+        for(std::size_t l = 0; l < kt; ++l)
+        {
+          const std::size_t r = edges.flipped[j] ? l * cols + k : k * cols + l;
+          const double c = double(first[r]);
+          if(!std::isfinite(c))
+            throw Invalid_energy_error(trws_message(
+                "trws_labeling: pairwise cost of edge (", ends[i].first, ", ", ends[i].second,
+                "), labels (", r / cols, ", ", r % cols, ") is ", c, " (costs must be finite)"));
+          table[k * kt + l] += FT(c);
+        }
+    }
+  }
+}
+
+/// Solves the energy of trws_labeling(), starting from the `initial_labeling` named parameter
+/// (read from its vertex map into a vector indexed by node) when there is one.
+template <typename FT, typename ConcurrencyTag, typename Energy, typename VertexDescriptor, typename NamedParameters>
+Trws_result trws_solve_graph_energy(const Energy& energy, const std::vector<VertexDescriptor>& vertex_of,
+                                    const NamedParameters& np, std::vector<std::size_t>& labels)
+{
+  Trws_solver<FT, ConcurrencyTag> solver;
+  if constexpr(!parameters::is_default_parameter<NamedParameters,
+                                                 internal_np::initial_labeling_t>::value)
+  {
+    const auto initial_map = parameters::get_parameter(np, internal_np::initial_labeling);
+    std::vector<long long> initial(vertex_of.size());
+    for(std::size_t i = 0; i < vertex_of.size(); ++i)
+      initial[i] = static_cast<long long>(get(initial_map, vertex_of[i]));
+    return solver.solve(energy, labels, parameters::initial_labeling(initial, np));
+  }
+  else
+    return solver.solve(energy, labels, np);
+}
+
 } // namespace internal
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
@@ -1205,182 +1415,38 @@ Trws_result trws_labeling(const Graph& g, LabelCountMap label_counts, UnaryCostM
 {
   BOOST_CONCEPT_ASSERT((boost::VertexListGraphConcept<Graph>));
   BOOST_CONCEPT_ASSERT((boost::EdgeListGraphConcept<Graph>));
-  typedef typename boost::graph_traits<Graph>::vertex_descriptor vertex_descriptor;
   typedef typename boost::graph_traits<Graph>::edge_descriptor edge_descriptor;
   typedef typename boost::property_traits<PairwiseCostMap>::value_type Pairwise_value;
-  using internal::trws_message;
 
   // Nodes: vertices numbered by the vertex index map, which must be a bijection onto [0, n).
   const auto vertex_index = internal::trws_vertex_index_map(g, np);
-  const std::size_t n = static_cast<std::size_t>(num_vertices(g));
-  std::vector<vertex_descriptor> vertex_of(n);
-  std::vector<unsigned char> seen(n, 0);
-  std::vector<std::size_t> label_count(n);
-  std::size_t visited = 0;
-  for(vertex_descriptor v : make_range(vertices(g)))
-  {
-    const auto i = get(vertex_index, v);
-    if(!internal::trws_index_in_range(i, n) || seen[std::size_t(i)])
-      throw Invalid_parameter_error(
-          trws_message("trws_labeling: the vertex index map is not a bijection onto [0, ", n,
-                       ") (index ", i, "); pass an initialised vertex_index_map"));
-    seen[std::size_t(i)] = 1;
-    vertex_of[std::size_t(i)] = v;
-    const auto k = get(label_counts, v);
-    if(!(k >= 1))
-      throw Invalid_energy_error(trws_message("trws_labeling: vertex ", i, " has no label"));
-    label_count[std::size_t(i)] = static_cast<std::size_t>(k);
-    ++visited;
-  }
-  if(visited != n)
-    throw Invalid_parameter_error(trws_message("trws_labeling: vertices(g) has ", visited,
-                                               " vertices but num_vertices(g) is ", n));
-
+  const auto nodes = internal::trws_graph_nodes(g, vertex_index, label_counts);
   // Edges; parallel edges are grouped, the first one of a group (in the order of edges(g)) gives
   // the orientation of the merged edge.
-  std::vector<edge_descriptor> graph_edges;
-  std::vector<std::pair<std::size_t, std::size_t> > ends;
-  for(edge_descriptor e : make_range(edges(g)))
-  {
-    const std::size_t s = std::size_t(get(vertex_index, source(e, g)));
-    const std::size_t t = std::size_t(get(vertex_index, target(e, g)));
-    if(s == t) throw Invalid_energy_error(trws_message("trws_labeling: self-loop at vertex ", s));
-    graph_edges.push_back(e);
-    ends.emplace_back(s, t);
-  }
-  const std::size_t m = ends.size();
-  std::vector<std::size_t> order(m);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  auto key = [&](std::size_t i) {
-    return std::make_pair((std::min)(ends[i].first, ends[i].second),
-                          (std::max)(ends[i].first, ends[i].second));
-  };
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return key(a) < key(b) || (key(a) == key(b) && a < b);
-  });
-  // Merged edges are numbered by (smaller, larger) vertex index, so that the forward pass reads
-  // their tables in storage order; each keeps the orientation of its first graph edge.
-  std::vector<std::size_t> representative(m); // first edge of each graph edge's group
-  std::vector<std::size_t> group(m, std::size_t(-1));
-  std::vector<std::pair<std::size_t, std::size_t> > flat_edges;
-  for(std::size_t j = 0; j < m; ++j)
-  {
-    const std::size_t i = order[j];
-    if(j > 0 && key(order[j - 1]) == key(i))
-      representative[i] = representative[order[j - 1]];
-    else
-    {
-      representative[i] = i;
-      group[i] = flat_edges.size();
-      flat_edges.push_back(ends[i]);
-    }
-  }
-  const std::size_t flat_m = flat_edges.size();
-  std::vector<std::size_t> member_offsets(flat_m + 1, 0);
-  for(std::size_t i = 0; i < m; ++i) ++member_offsets[group[representative[i]] + 1];
-  for(std::size_t f = 0; f < flat_m; ++f) member_offsets[f + 1] += member_offsets[f];
-  std::vector<edge_descriptor> members(m);
-  std::vector<unsigned char> flipped(m);
-  std::vector<std::size_t> member_edge(m); // index into graph_edges
-  {
-    std::vector<std::size_t> fill(member_offsets.begin(), member_offsets.end() - 1);
-    for(std::size_t i = 0; i < m; ++i)
-    {
-      const std::size_t f = group[representative[i]], slot = fill[f]++;
-      members[slot] = graph_edges[i];
-      member_edge[slot] = i;
-      flipped[slot] = (ends[i].first != flat_edges[f].first) ? 1 : 0;
-    }
-  }
-
-  auto fill_unary = [&](auto& energy) {
-    for(std::size_t i = 0; i < n; ++i)
-    {
-      auto&& costs = get(unary_costs, vertex_of[i]);
-      const std::size_t size = static_cast<std::size_t>(boost::size(costs));
-      if(size != label_count[i])
-        throw Invalid_energy_error(trws_message("trws_labeling: vertex ", i, " has ",
-                                                label_count[i], " labels but ", size,
-                                                " unary costs"));
-      auto first = boost::begin(costs);
-      FT* out = energy.unary_costs(i);
-      for(std::size_t k = 0; k < size; ++k)
-      {
-        const double c = double(first[k]);
-        if(!std::isfinite(c))
-          throw Invalid_energy_error(trws_message("trws_labeling: unary cost of vertex ", i,
-                                                  ", label ", k, " is ", c,
-                                                  " (costs must be finite)"));
-        out[k] = FT(c);
-      }
-    }
-  };
-
-  // The initial labeling, read from its vertex map into a vector indexed by node.
-  auto solve = [&](const auto& energy, std::vector<std::size_t>& labels) {
-    Trws_solver<FT, ConcurrencyTag> solver;
-    if constexpr(!parameters::is_default_parameter<NamedParameters,
-                                                   internal_np::initial_labeling_t>::value)
-    {
-      const auto initial_map = parameters::get_parameter(np, internal_np::initial_labeling);
-      std::vector<long long> initial(n);
-      for(std::size_t i = 0; i < n; ++i)
-        initial[i] = static_cast<long long>(get(initial_map, vertex_of[i]));
-      return solver.solve(energy, labels, parameters::initial_labeling(initial, np));
-    }
-    else
-      return solver.solve(energy, labels, np);
-  };
+  const auto graph_edges = internal::trws_graph_edges(g, vertex_index);
 
   std::vector<std::size_t> labels;
   Trws_result result;
   if constexpr(internal::Trws_is_cost_functor<Pairwise_value>::value)
   {
     typedef internal::Trws_graph_pairwise_cost<FT, edge_descriptor, PairwiseCostMap> Cost;
-    Discrete_energy<FT, Cost> energy(label_count, flat_edges,
-                                     Cost(pairwise_costs, &members, &member_offsets, &flipped));
-    fill_unary(energy);
-    result = solve(energy, labels);
+    Discrete_energy<FT, Cost> energy(nodes.label_count, graph_edges.flat_edges,
+                                     Cost(pairwise_costs, &graph_edges.members, &graph_edges.member_offsets,
+                                          &graph_edges.flipped));
+    internal::trws_fill_unary_costs<FT>(energy, unary_costs, nodes);
+    result = internal::trws_solve_graph_energy<FT, ConcurrencyTag>(energy, nodes.vertex_of, np, labels);
   }
   else
   {
-    Discrete_energy<FT> energy(label_count, flat_edges);
-    fill_unary(energy);
-    for(std::size_t f = 0; f < flat_m; ++f)
-    {
-      const std::size_t ks = label_count[flat_edges[f].first],
-                        kt = label_count[flat_edges[f].second];
-      FT* table = energy.pairwise_costs(f);
-      for(std::size_t j = member_offsets[f]; j < member_offsets[f + 1]; ++j)
-      {
-        const std::size_t i = member_edge[j];
-        auto&& costs = get(pairwise_costs, members[j]);
-        const std::size_t size = static_cast<std::size_t>(boost::size(costs));
-        if(size != ks * kt)
-          throw Invalid_energy_error(trws_message(
-              "trws_labeling: the pairwise table of edge (", ends[i].first, ", ", ends[i].second,
-              ") has ", size, " costs instead of ", label_count[ends[i].first], " x ",
-              label_count[ends[i].second], " = ", ks * kt));
-        auto first = boost::begin(costs);
-        const std::size_t cols = label_count[ends[i].second]; // columns in the graph edge's order
-        for(std::size_t k = 0; k < ks; ++k)
-          for(std::size_t l = 0; l < kt; ++l)
-          {
-            const std::size_t r = flipped[j] ? l * cols + k : k * cols + l;
-            const double c = double(first[r]);
-            if(!std::isfinite(c))
-              throw Invalid_energy_error(trws_message(
-                  "trws_labeling: pairwise cost of edge (", ends[i].first, ", ", ends[i].second,
-                  "), labels (", r / cols, ", ", r % cols, ") is ", c, " (costs must be finite)"));
-            table[k * kt + l] += FT(c);
-          }
-      }
-    }
-    result = solve(energy, labels);
+    Discrete_energy<FT> energy(nodes.label_count, graph_edges.flat_edges);
+    internal::trws_fill_unary_costs<FT>(energy, unary_costs, nodes);
+    internal::trws_fill_pairwise_tables(energy, pairwise_costs, nodes, graph_edges);
+    result = internal::trws_solve_graph_energy<FT, ConcurrencyTag>(energy, nodes.vertex_of, np, labels);
   }
 
   typedef typename boost::property_traits<LabelingMap>::value_type Label;
-  for(std::size_t i = 0; i < n; ++i) put(labeling, vertex_of[i], static_cast<Label>(labels[i]));
+  for(std::size_t i = 0; i < nodes.vertex_of.size(); ++i)
+    put(labeling, nodes.vertex_of[i], static_cast<Label>(labels[i]));
   return result;
 }
 
