@@ -68,9 +68,9 @@ void accuracy(const std::string& name, const smci::Indexed_mesh& m, int sources,
   smci::Fast_marching_workspace ws_c(circular), ws_p(planar);
   const smc::Dense_distance_oracle dense =
       n <= 15000 ? smc::Dense_distance_oracle::build<CGAL::Parallel_tag>(m) : smc::Dense_distance_oracle();
-  const double radius = smc::default_local_radius_in_edge_lengths * circular.graph.mean_edge_length;
+  const double radius = smc::Matching_settings().oracle_radius * circular.graph.mean_edge_length;
   const smc::Local_distance_oracle local =
-      smc::Local_distance_oracle::build<CGAL::Parallel_tag>(m, radius, smc::default_number_of_landmarks);
+      smc::Local_distance_oracle::build<CGAL::Parallel_tag>(m, radius, smc::Matching_settings().oracle_landmarks);
   std::cerr << name << ": oracles built in " << timer.seconds() << " s\n";
 
   enum { EXACT_SELF, FMM, FMM_PLANAR, HEAT, DENSE, LOCAL, LOCAL_FAR, LOCAL_FAR_NEAR, METHODS };
@@ -120,7 +120,7 @@ void accuracy(const std::string& name, const smci::Indexed_mesh& m, int sources,
                   std::to_string(a.count), num(100 * a.abs_sum / a.count, 4), num(100 * a.abs_max, 3),
                   num(100 * a.rel_sum / a.count, 3)});
     }
-  std::cerr << name << ": local oracle radius " << radius << " (" << smc::default_local_radius_in_edge_lengths
+  std::cerr << name << ": local oracle radius " << radius << " (" << smc::Matching_settings().oracle_radius
             << " mean edges), fraction of pairs inside: <=5 rings "
             << double(local_pairs[0]) / std::max(1L, all_pairs[0]) << ", >5 rings "
             << double(local_pairs[1]) / std::max(1L, all_pairs[1]) << ", covering radius / sqrt(area) "
@@ -229,7 +229,7 @@ void timing(int target_size, int sources, Report& report)
   // Fast marching.
   smci::Fast_marching_geometry geometry(m);
   smci::Fast_marching_workspace ws(geometry);
-  const double radius = smc::default_local_radius_in_edge_lengths * geometry.graph.mean_edge_length;
+  const double radius = smc::Matching_settings().oracle_radius * geometry.graph.mean_edge_length;
   restart();
   for(int k = 0; k < 5 * sources; ++k) ws.run(picks[k % sources]);
   add("fast_marching_per_source_full", timer.seconds() / (5 * sources), 0, "", 5 * sources);
@@ -241,7 +241,7 @@ void timing(int target_size, int sources, Report& report)
     accepted += ws.accepted().size();
   }
   add("fast_marching_per_source_truncated", timer.seconds() / (20 * sources), 0,
-      "R = " + std::to_string(smc::default_local_radius_in_edge_lengths) + " mean edges, " +
+      "R = " + std::to_string(smc::Matching_settings().oracle_radius) + " mean edges, " +
           std::to_string(accepted / (20 * sources)) + " vertices",
       20 * sources);
   // Dijkstra along edges (what farthest point sampling uses), full run, for comparison.
@@ -299,7 +299,7 @@ void timing(int target_size, int sources, Report& report)
   base = smc_bench::current_memory_mib();
   restart();
   const smc::Local_distance_oracle local =
-      smc::Local_distance_oracle::build<CGAL::Parallel_tag>(m, radius, smc::default_number_of_landmarks);
+      smc::Local_distance_oracle::build<CGAL::Parallel_tag>(m, radius, smc::Matching_settings().oracle_landmarks);
   const double build = timer.seconds();
   add("local_oracle_build_parallel", build, smc_bench::peak_memory_mib() - base,
       "oracle " + num(local.memory_bytes() / 1048576.0, 1) + " MiB, " +
@@ -432,7 +432,7 @@ int main(int argc, char** argv)
       accuracy(s.first, m, sources, report);
       if(s.first == shapes.front().first)
       {
-        const double radius = smc::default_local_radius_in_edge_lengths * smci::Edge_length_graph(m).mean_edge_length;
+        const double radius = smc::Matching_settings().oracle_radius * smci::Edge_length_graph(m).mean_edge_length;
         const smc::Local_distance_oracle local = smc::Local_distance_oracle::build<CGAL::Parallel_tag>(m, radius, 64);
         coverage(m, local, cover);
       }
@@ -440,7 +440,7 @@ int main(int argc, char** argv)
     std::cout << "=== accuracy against exact geodesics (CGAL Surface_mesh_shortest_path), " << sources
               << " random sources per shape; errors in % of sqrt(area) and relative %\n";
     report.print();
-    std::cout << "=== refinement pair queries inside the local radius (" << smc::default_local_radius_in_edge_lengths
+    std::cout << "=== refinement pair queries inside the local radius (" << smc::Matching_settings().oracle_radius
               << " mean edge lengths), " << shapes.front().first << ", 400 source edges x 30 x 30 candidates\n";
     cover.print();
   }

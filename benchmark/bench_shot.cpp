@@ -111,7 +111,7 @@ void time_and_memory(const std::vector<int>& sizes)
   std::cout << "\n# SHOT wall-clock time (best of 3; total = public function with the mesh copy), "
                "process CPU time of the descriptor part (all threads), and peak memory above the "
                "resident size before the call (default shot_radius "
-            << smc::internal::default_shot_radius << ")\n";
+            << smc::Matching_settings().shot_radius << ")\n";
   report.print();
 }
 

@@ -1,35 +1,46 @@
 // Copyright (c) 2026 The Surface_mesh_correspondence developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The whole pipeline on two mesh files: automatic initial maps, then the coupled refinement.
+// The whole pipeline on two mesh files in one call: match_shapes() computes the maps in both
+// directions from the two meshes alone (the README's library example).
 //   match_meshes A.off B.off [PREFIX]
-// writes PREFIX_12.map and PREFIX_21.map (0-based vertex indices, one per line).
+// writes PREFIX_12.map and PREFIX_21.map (1-based vertex indices, one per line, like
+// `comap match`).
 
+// [snippet:match]
 #include <CGAL/Surface_mesh_correspondence.h>
-
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Surface_mesh.h>
-
-#include <iostream>
-#include <memory>
-#include <string>
-#include <vector>
 
 namespace smc = CGAL::Surface_mesh_correspondence;
 typedef CGAL::Surface_mesh<CGAL::Epick::Point_3> Mesh;
-typedef CGAL::Parallel_if_available_tag Concurrency;
+typedef Mesh::Property_map<Mesh::Vertex_index, Mesh::Vertex_index> Vertex_to_vertex;
 
-/// Prints one line per MRF solve of the refinement.
-struct Print_steps : smc::Default_refinement_visitor
+// map_12[v]: the vertex of m2 matched to vertex v of m1; map_21 the other way round.
+smc::Matching_result match(Mesh& m1, Mesh& m2, Vertex_to_vertex& map_12, Vertex_to_vertex& map_21)
 {
-  bool step(const smc::Refinement_step& s)
-  {
-    std::cerr << "  outer iteration " << s.outer_iteration + 1 << (s.direction == 0 ? ", map 1->2" : ", map 2->1")
-              << ": energy " << s.energy << ", " << s.inconsistent_vertices << " inconsistent vertices\n";
-    return true;
-  }
-};
+  map_12 = m1.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>("v:match").first;
+  map_21 = m2.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>("v:match").first;
+  return smc::match_shapes<CGAL::Parallel_if_available_tag>(m1, m2, map_12, map_21);
+}
+// [/snippet:match]
+
+#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+
+#include <fstream>
+#include <iostream>
+#include <string>
+
+namespace {
+
+bool write_map(const std::string& file, const Mesh& source, const Vertex_to_vertex& map)
+{
+  std::ofstream out(file);
+  for(Mesh::Vertex_index v : source.vertices()) out << map[v].idx() + 1 << "\n";
+  return bool(out);
+}
+
+} // namespace
 
 int main(int argc, char** argv)
 {
@@ -47,37 +58,16 @@ int main(int argc, char** argv)
   }
   try
   {
-    // 1. The prepared shapes (spectrum, descriptors, distance oracle). One eigensolve per shape
-    //    serves both steps: the initialisation needs 200 eigenpairs, the refinement's descriptors
-    //    the first 100, and the shapes share the 200 for the initialisation (a shared pointer is
-    //    shared; a spectrum passed as std::cref(spectrum) would be copied).
-    typedef std::shared_ptr<const smc::Laplace_beltrami_spectrum> Spectrum_ptr;
-    const Spectrum_ptr spectrum_1 = std::make_shared<const smc::Laplace_beltrami_spectrum>(
-                           m1, smc::parameters::number_of_eigenpairs(200)),
-                       spectrum_2 = std::make_shared<const smc::Laplace_beltrami_spectrum>(
-                           m2, smc::parameters::number_of_eigenpairs(200));
-    const smc::Correspondence_shape<Mesh, Concurrency> s1(m1, smc::parameters::precomputed_spectrum(spectrum_1)),
-        s2(m2, smc::parameters::precomputed_spectrum(spectrum_2));
-
-    // 2. Initial maps from the two shapes alone (functional maps + ZoomOut).
-    smc::Vertex_index_map_vector x12, x21;
-    const smc::Automatic_initialization_result init = smc::automatic_initial_maps<Concurrency>(s1, s2, x12, x21);
-    std::cerr << "automatic initial maps in " << init.total_seconds << " s\n";
-
-    // 3. Coupled refinement on the same shapes.
-    Print_steps visitor;
-    // The preset for automatic maps: they are consistent by construction and within a few rings
-    // of their refined positions, so the refinement uses a lighter cycle term, a short ring
-    // schedule searched with more candidates and fewer TRW-S iterations, and returns its most
-    // consistent refined iterate (see Refinement_preset; explicit parameters override it).
-    const smc::Coupled_refinement_result r = smc::refine_coupled_maps(
-        s1, s2, x12, x21,
-        smc::parameters::refinement_preset(smc::Refinement_preset::automatic_maps).visitor(std::ref(visitor)));
-    std::cerr << "refinement: " << r.inconsistent_vertices_before << " -> " << r.inconsistent_vertices_after
-              << " inconsistent vertices in " << r.total_seconds << " s\n";
-
-    smc::write_vertex_indices(prefix + "_12.map", x12, 0);
-    smc::write_vertex_indices(prefix + "_21.map", x21, 0);
+    Vertex_to_vertex map_12, map_21;
+    const smc::Matching_result r = match(m1, m2, map_12, map_21);
+    for(const std::string& decision : r.decisions) std::cout << decision << "\n";
+    std::cout << "inconsistent vertices: " << r.inconsistent_vertices_before << " -> "
+              << r.inconsistent_vertices_after << ", " << r.total_seconds << " s\n";
+    if(!write_map(prefix + "_12.map", m1, map_12) || !write_map(prefix + "_21.map", m2, map_21))
+    {
+      std::cerr << "cannot write " << prefix << "_12.map or " << prefix << "_21.map\n";
+      return 1;
+    }
     std::cout << "wrote " << prefix << "_12.map and " << prefix << "_21.map\n";
   }
   catch(const std::exception& e)

@@ -101,8 +101,9 @@ BOOST_AUTO_TEST_CASE(bench_on_a_two_pair_dataset)
 {
   const Dataset& d = dataset();
   const std::string out = in_scratch("bench_out");
+  // The given maps as they are: neither repaired nor compared with the automatic maps.
   const Run r = comap("bench --data " + d.dir + " --init " + d.dir + "/maps/noisy --out " + out + " --jobs 2" +
-                      fast_options());
+                      fast_options() + " --set repair_given_maps=false --set compare_with_automatic_maps=false");
   BOOST_TEST_REQUIRE(r.code == 0, r.err);
   BOOST_TEST(r.out.find("2 pairs (4 maps)") != std::string::npos);
   const auto rows = read_csv(out + "/pairs.csv");
@@ -160,15 +161,18 @@ BOOST_AUTO_TEST_CASE(bench_automatic_pipeline_and_comparison_plot)
   const std::string out = in_scratch("bench_auto");
   const Run r = comap("bench --data " + d.dir + " --out " + out + " --limit 1" + fast_options());
   BOOST_TEST_REQUIRE(r.code == 0, r.err);
-  BOOST_TEST(read_map(out + "/init_maps/s0_s1.map", 1).size() == num_vertices(d.s0));
+  BOOST_TEST(read_map(out + "/unrefined_maps/s0_s1.map", 1).size() == num_vertices(d.s0));
   BOOST_TEST(read_map(out + "/maps/s1_s0.map", 1).size() == num_vertices(d.s1));
   BOOST_TEST(lines_of(read_text(out + "/pairs.csv")).size() == 3u);
   BOOST_TEST(read_csv(out + "/pairs.csv")[0].at("refined_as_automatic") == "1");
-  // Given maps compared with the automatic ones: the column says which were kept, and maps kept
-  // from the automatic initialisation are refined as automatic maps.
+  // Given maps compared with the automatic ones (on every pair: threshold 0), not refined: the
+  // column says which were kept, and maps kept from the automatic initialisation count as
+  // automatic maps.
   const std::string compared = in_scratch("bench_compare");
   const Run c = comap("bench --data " + d.dir + " --init " + d.dir + "/maps/noisy --out " + compared +
-                      " --limit 1 --compare-automatic --no-refine" + fast_options());
+                      " --limit 1" + fast_options() +
+                      " --set repair_given_maps=false --set automatic_maps_comparison_threshold=0"
+                      " --set use_refinement=false");
   BOOST_TEST_REQUIRE(c.code == 0, c.err);
   const auto rows = read_csv(compared + "/pairs.csv");
   BOOST_TEST_REQUIRE(rows.size() == 2u);
@@ -180,12 +184,12 @@ BOOST_AUTO_TEST_CASE(bench_automatic_pipeline_and_comparison_plot)
   BOOST_TEST(given_distortion > 0);
   BOOST_TEST(automatic_distortion > 0);
   BOOST_TEST((rows[0].at("automatic_maps_kept") == "1") == (automatic_distortion < given_distortion));
-  BOOST_TEST(read_map(compared + "/repaired_maps/s0_s1.map", 1) == read_map(compared + "/maps/s0_s1.map", 1));
+  BOOST_TEST(read_map(compared + "/unrefined_maps/s0_s1.map", 1) == read_map(compared + "/maps/s0_s1.map", 1));
   BOOST_TEST(read_text(compared + "/summary.json").find("\"compare_with_automatic_maps\": true") != std::string::npos);
   // A non-coupled run compared with the coupled one: both curves in its plot.
   const std::string ablation = in_scratch("bench_ablation");
-  const Run a = comap("bench --data " + d.dir + " --out " + ablation + " --limit 1 --no-coupling --compare " + out +
-                      fast_options());
+  const Run a = comap("bench --data " + d.dir + " --out " + ablation + " --limit 1 --compare " + out + fast_options() +
+                      " --set use_coupling=false");
   BOOST_TEST_REQUIRE(a.code == 0, a.err);
   const std::string svg = read_text(ablation + "/cumulative_error.svg");
   BOOST_TEST(svg.find("refined (non-coupled)") != std::string::npos);

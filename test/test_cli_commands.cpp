@@ -51,18 +51,26 @@ void check_map_file(const std::string& file, std::size_t size, std::size_t targe
 
 BOOST_AUTO_TEST_SUITE(cli_round_trip)
 
-BOOST_AUTO_TEST_CASE(help_shows_the_library_defaults)
+BOOST_AUTO_TEST_CASE(help_is_short_and_lists_the_registry)
 {
   const Run r = comap("match --help");
   BOOST_TEST(r.code == 0);
-  const smc::Refinement_settings defaults;
-  BOOST_TEST(r.out.find("--candidates M") != std::string::npos);
-  BOOST_TEST(r.out.find("(default " + std::to_string(defaults.number_of_candidates) + ")") != std::string::npos);
-  std::string rings;
-  for(std::size_t i = 0; i < defaults.ring_schedule.size(); ++i)
-    rings += (i ? "," : "") + std::to_string(defaults.ring_schedule[i]);
-  BOOST_TEST(r.out.find("(default " + rings + ")") != std::string::npos);
-  BOOST_TEST(r.out.find("--init-basis") != std::string::npos);
+  // The common options only (at most 25), then every setting of the registry with its defaults.
+  std::size_t options = 0;
+  for(const std::string& line : lines_of(r.out))
+    options += std::regex_search(line, std::regex("^ *--"));
+  BOOST_TEST_MESSAGE("comap match --help: " << options << " options");
+  BOOST_TEST(options <= 25u);
+  BOOST_TEST(r.out.find("--settings FILE.json") != std::string::npos);
+  BOOST_TEST(r.out.find("--set NAME=VALUE") != std::string::npos);
+  for(const smc::Setting_info& s : smc::matching_settings_registry())
+  {
+    const std::string entry = "  " + s.name + " (" + s.type + ", " + s.range_text + ") [" + s.default_text;
+    BOOST_TEST(r.out.find(entry) != std::string::npos, "missing: " << entry);
+    if(s.given_default_text != s.default_text)
+      BOOST_TEST(r.out.find("given maps: " + s.given_default_text + "]") != std::string::npos, s.name);
+  }
+  BOOST_TEST(r.out.find("[40; given maps: 20]") != std::string::npos);  // number_of_candidates
   const Run top = comap("--help");
   BOOST_TEST(top.code == 0);
   BOOST_TEST(top.out.find("bench") != std::string::npos);
@@ -93,10 +101,15 @@ BOOST_AUTO_TEST_CASE(match_refines_given_maps_0_and_1_based)
   BOOST_TEST_MESSAGE("mean error 1->2: " << before << " -> " << after);
   BOOST_TEST(after < before);
   const std::string stats = read_text(in_scratch("stats.json"));
-  for(const char* key : {"\"settings\"", "\"refinement\"", "\"steps\"", "\"timings\"", "\"data_preparation_seconds\""})
+  for(const char* key : {"\"settings\"", "\"refinement\"", "\"steps\"", "\"stage_seconds\"", "\"data_preparation_seconds\"",
+                         "\"decisions\"", "\"selection\""})
     BOOST_TEST(stats.find(key) != std::string::npos, key);
   BOOST_TEST(r0.out.find("0-based") != std::string::npos);
-  // Given maps: the default stop rule runs the whole schedule (--rings 3,2: 2 outer iterations).
+  // These noisy maps stay the given ones (too little distorted for the comparison with the
+  // automatic maps, no tear), refined with the defaults for given maps: the whole schedule
+  // (ring_schedule [3, 2]: 2 outer iterations).
+  BOOST_TEST(stats.find("\"initial_maps\": \"given\"") != std::string::npos);
+  BOOST_TEST(stats.find("\"refined_maps\": \"given\"") != std::string::npos);
   BOOST_TEST(stats.find("\"outer_iterations\": 2,") != std::string::npos);
 
   // The same maps 1-based give the same result, written 1-based.
@@ -113,9 +126,10 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
 {
   const Cli_pair& p = cli_pair();
   const std::size_t n1 = num_vertices(p.pair.m1), n2 = num_vertices(p.pair.m2);
-  // --no-refine: exactly the maps of the library's automatic_initial_maps() with the same settings.
-  const Run init = comap("match " + p.a + " " + p.b + " --no-refine --init-basis 40 --quiet --out-12 " +
-                         in_scratch("a12.map") + " --out-21 " + in_scratch("a21.map"));
+  // use_refinement=false: exactly the maps of the library's automatic_initial_maps() with the same
+  // settings.
+  const Run init = comap("match " + p.a + " " + p.b + " --set use_refinement=false --set zoomout_final_size=40 --quiet" +
+                         " --out-12 " + in_scratch("a12.map") + " --out-21 " + in_scratch("a21.map"));
   BOOST_TEST_REQUIRE(init.code == 0, init.err);
   BOOST_TEST(init.out.find("automatic") != std::string::npos);
   check_map_file(in_scratch("a12.map"), n1, n2, 1);
@@ -125,9 +139,13 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   BOOST_TEST(read_map(in_scratch("a12.map"), 1) == l12);
   BOOST_TEST(read_map(in_scratch("a21.map"), 1) == l21);
   BOOST_TEST_MESSAGE("automatic initial map 1->2: mean error " << mean_error(p.pair.m2, l12, p.pair.gt_12));
-  // --init-pass-basis: passes end at 40, the kept maps grow to 60, as in the library.
-  const Run grown = comap("match " + p.a + " " + p.b + " --no-refine --init-basis 60 --init-pass-basis 40 --quiet" +
-                          " --out-12 " + in_scratch("g12.map") + " --out-21 " + in_scratch("g21.map"));
+  // Passes that end at 40 and maps that grow to 60, as in the library; set from a settings file
+  // and overridden by --set (the later one wins).
+  write_text(in_scratch("grow.json"), "{\"zoomout_final_size\": 50, \"zoomout_pass_size\": 40,\n"
+                                      " \"use_refinement\": false}\n");
+  const Run grown = comap("match " + p.a + " " + p.b + " --settings " + in_scratch("grow.json") +
+                          " --set zoomout_final_size=60 --quiet --out-12 " + in_scratch("g12.map") + " --out-21 " +
+                          in_scratch("g21.map"));
   BOOST_TEST_REQUIRE(grown.code == 0, grown.err);
   std::vector<std::size_t> g12, g21;
   smc::automatic_initial_maps<Tag>(p.pair.m1, p.pair.m2, g12, g21,
@@ -136,104 +154,71 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   BOOST_TEST(read_map(in_scratch("g21.map"), 1) == g21);
   BOOST_TEST(g12 != l12);
 
-  // Without --rings, --candidates and --trws-iterations, automatic maps are refined with the short
-  // schedule 4,3,2,1, 40 candidates and 15 TRW-S iterations; given maps with the library's
-  // defaults (6,4,3,2,1, 20 and 100). The cycle term's weight is recorded.
-  std::string no_refinement_options = fast_options();
-  for(const std::string option : {" --rings 3,2", " --candidates 10", " --trws-iterations 30"})
-    no_refinement_options.erase(no_refinement_options.find(option), option.size());
-  std::string with_progress = no_refinement_options;
-  with_progress.erase(with_progress.find(" --quiet"), std::string(" --quiet").size());
-  const Run short_schedule = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch("s12.map") + " --out-21 " +
-                                   in_scratch("s21.map") + " --stats " + in_scratch("short.json") +
-                                   " --consistency-weight 0.75" + with_progress);
-  BOOST_TEST_REQUIRE(short_schedule.code == 0, short_schedule.err);
-  // The progress announces the settings actually used.
-  BOOST_TEST(short_schedule.err.find("rings 4,3,2,1, 40 candidates") != std::string::npos, short_schedule.err);
-  const std::string short_stats = read_text(in_scratch("short.json"));
-  BOOST_TEST(short_stats.find("\"ring_schedule\": [4, 3, 2, 1]") != std::string::npos);
-  BOOST_TEST(short_stats.find("\"number_of_candidates\": 40,") != std::string::npos);
-  BOOST_TEST(short_stats.find("\"trws_number_of_iterations\": 15,") != std::string::npos);
-  BOOST_TEST(short_stats.find("\"consistency_weight\": 0.75") != std::string::npos);
-  const smc::Refinement_settings library;
-  const Run given_defaults = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("s12.map") + " --init-21 " +
-                                   in_scratch("s21.map") + " --out-12 " + in_scratch("d12.map") + " --out-21 " +
-                                   in_scratch("d21.map") + " --stats " + in_scratch("given_defaults.json") +
-                                   " --outer-iterations 1" + no_refinement_options);
-  BOOST_TEST_REQUIRE(given_defaults.code == 0, given_defaults.err);
-  const std::string given_stats = read_text(in_scratch("given_defaults.json"));
+  // Automatic maps are refined with the registry's defaults for automatic maps (ring_schedule
+  // [4, 3, 2, 1], 40 candidates, 15 TRW-S iterations), given maps with those for given maps
+  // ([6, 4, 3, 2, 1], 20, 100); a setting given by the user holds for both.
+  const std::vector<std::string> refinement = {"ring_schedule", "number_of_candidates", "trws_number_of_iterations"};
+  const std::string defaults = fast_options(refinement);
+  const Run automatic = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch("s12.map") + " --out-21 " +
+                              in_scratch("s21.map") + " --stats " + in_scratch("automatic.json") +
+                              " --set consistency_weight=0.75" + defaults);
+  BOOST_TEST_REQUIRE(automatic.code == 0, automatic.err);
+  const std::string automatic_stats = read_text(in_scratch("automatic.json"));
+  BOOST_TEST(automatic_stats.find("\"ring_schedule\": [4, 3, 2, 1]") != std::string::npos);
+  BOOST_TEST(automatic_stats.find("\"number_of_candidates\": 40,") != std::string::npos);
+  BOOST_TEST(automatic_stats.find("\"trws_number_of_iterations\": 15,") != std::string::npos);
+  BOOST_TEST(automatic_stats.find("\"consistency_weight\": 0.75") != std::string::npos);
+  const Run given = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("s12.map") + " --init-21 " +
+                          in_scratch("s21.map") + " --out-12 " + in_scratch("d12.map") + " --out-21 " +
+                          in_scratch("d21.map") + " --stats " + in_scratch("given.json") +
+                          " --set number_of_outer_iterations=1 --set repair_given_maps=false"
+                          " --set compare_with_automatic_maps=false" + defaults);
+  BOOST_TEST_REQUIRE(given.code == 0, given.err);
+  const std::string given_stats = read_text(in_scratch("given.json"));
+  BOOST_TEST(given_stats.find("\"refined_maps\": \"given\"") != std::string::npos);
   BOOST_TEST(given_stats.find("\"ring_schedule\": [6, 4, 3, 2, 1]") != std::string::npos);
-  BOOST_TEST(given_stats.find("\"number_of_candidates\": " + std::to_string(library.number_of_candidates) + ",") !=
-             std::string::npos);
-  BOOST_TEST(given_stats.find("\"trws_number_of_iterations\": " + std::to_string(library.trws_number_of_iterations) +
-                              ",") != std::string::npos);
+  BOOST_TEST(given_stats.find("\"number_of_candidates\": 20,") != std::string::npos);
+  BOOST_TEST(given_stats.find("\"trws_number_of_iterations\": 100,") != std::string::npos);
+  BOOST_TEST(given_stats.find("\"consistency_weight\": 1,") != std::string::npos);
+  BOOST_TEST(given_stats.find("\"outer_iterations\": 1,") != std::string::npos);
 
-  // Automatic maps with the fast settings, then the whole pipeline with them.
-  const Run fast_init = comap("match " + p.a + " " + p.b + " --no-refine --out-12 " + in_scratch("b12.map") +
-                              " --out-21 " + in_scratch("b21.map") + fast_options());
-  BOOST_TEST_REQUIRE(fast_init.code == 0, fast_init.err);
-  const Run full = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch("f12.map") + " --out-21 " +
-                         in_scratch("f21.map") + " --stats " + in_scratch("full.json") + " --keep-input on" +
-                         fast_options());
-  BOOST_TEST_REQUIRE(full.code == 0, full.err);
-  const std::vector<std::size_t> f12 = read_map(in_scratch("f12.map"), 1), f21 = read_map(in_scratch("f21.map"), 1);
-  BOOST_TEST(f12.size() == n1);
-  // With --keep-input on, the refinement never returns maps less consistent than its input (the
-  // automatic maps; the default for automatic maps returns the most consistent refined iterate).
-  BOOST_TEST(smc::number_of_inconsistent_vertices(f12, f21) <=
-             smc::number_of_inconsistent_vertices(read_map(in_scratch("b12.map"), 1), read_map(in_scratch("b21.map"), 1)));
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"initialization\"") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"keep_input\": \"on\"") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"keep_consistent_input_maps\": true") != std::string::npos);
-  // Without --consistency-weight, automatic maps get the lighter cycle term.
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"consistency_weight\": 0.5,") != std::string::npos);
-
-  // --stop-rule auto (the default) is the Eq. (4) early stop for automatic maps: the same maps as
-  // --stop-rule consistency; the whole schedule (--stop-rule none, 2 outer iterations with
-  // --rings 3,2) returns maps at least as consistent.
-  auto run = [&](const std::string& rule, const std::string& tag) {
+  // The selection: "consistency" (the paper's rule) returns the refined maps only when they are
+  // more consistent than the automatic maps, so never less consistent maps; "refined" returns the
+  // refined maps whatever they are; the default ("regions") is more accurate than the automatic
+  // maps on this pair.
+  const Run unrefined = comap("match " + p.a + " " + p.b + " --set use_refinement=false --out-12 " +
+                              in_scratch("b12.map") + " --out-21 " + in_scratch("b21.map") + fast_options());
+  BOOST_TEST_REQUIRE(unrefined.code == 0, unrefined.err);
+  const std::vector<std::size_t> b12 = read_map(in_scratch("b12.map"), 1), b21 = read_map(in_scratch("b21.map"), 1);
+  auto run = [&](const std::string& options, const std::string& tag) {
     const Run r = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch(tag + "12.map") + " --out-21 " +
-                        in_scratch(tag + "21.map") + " --stats " + in_scratch(tag + ".json") + rule + fast_options());
+                        in_scratch(tag + "21.map") + " --stats " + in_scratch(tag + ".json") + fast_options() + options);
     BOOST_TEST_REQUIRE(r.code == 0, r.err);
     return std::make_pair(read_map(in_scratch(tag + "12.map"), 1), read_map(in_scratch(tag + "21.map"), 1));
   };
-  const auto light = run("", "light");  // every default
-  const auto early = run(" --stop-rule consistency", "early"), all = run(" --stop-rule none", "all");
-  BOOST_TEST((early.first == light.first && early.second == light.second));
-  // The settings record the choice and what it means for these maps.
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"stop_rule\": \"auto\"") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("full.json")).find("\"stop_when_consistency_worsens\": true") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("all.json")).find("\"stop_rule\": \"none\"") != std::string::npos);
+  const auto regions = run("", "regions");
+  const auto consistency = run(" --set refinement_selection=consistency", "consistency");
+  const auto refined = run(" --set refinement_selection=refined", "refined");
+  BOOST_TEST(smc::number_of_inconsistent_vertices(consistency.first, consistency.second) <=
+             smc::number_of_inconsistent_vertices(b12, b21));
+  BOOST_TEST(((consistency.first == b12 && consistency.second == b21) ||
+              (consistency.first == refined.first && consistency.second == refined.second)));
+  BOOST_TEST(read_text(in_scratch("refined.json")).find("\"refinement_selection\": \"refined\"") != std::string::npos);
+  BOOST_TEST(read_text(in_scratch("regions.json")).find("\"refinement_selection\": \"regions\"") != std::string::npos);
+  const double automatic_error = mean_error(p.pair.m2, b12, p.pair.gt_12);
+  const double regions_error = mean_error(p.pair.m2, regions.first, p.pair.gt_12);
+  BOOST_TEST_MESSAGE("automatic map 1->2 " << automatic_error << ", refined and selected (default) " << regions_error);
+  BOOST_TEST(regions_error < automatic_error);
+  // Without the early stop, the whole schedule runs (ring_schedule [3, 2]: 2 outer iterations).
+  run(" --set stop_when_consistency_worsens=false", "all");
   BOOST_TEST(read_text(in_scratch("all.json")).find("\"outer_iterations\": 2,") != std::string::npos);
-  // With the cycle term of given maps (--consistency-weight 1) every refined iterate of these
-  // automatic maps is more consistent than the one before, so the Eq. (4) early stop runs the whole
-  // schedule and returns refined maps, more consistent than the automatic ones; the same maps given
-  // as initial maps run the whole schedule without the early stop.
-  const auto strong = run(" --keep-input on --consistency-weight 1", "strong");
-  BOOST_TEST(read_text(in_scratch("strong.json")).find("\"outer_iterations\": 2,") != std::string::npos);
-  BOOST_TEST(smc::number_of_inconsistent_vertices(strong.first, strong.second) <
-             smc::number_of_inconsistent_vertices(read_map(in_scratch("b12.map"), 1), read_map(in_scratch("b21.map"), 1)));
-  // The default for automatic maps (cycle weight 0.5, the most consistent refined iterate
-  // returned) moves them further: more accurate than the automatic maps.
-  const double automatic_error = mean_error(p.pair.m2, read_map(in_scratch("b12.map"), 1), p.pair.gt_12);
-  const double light_error = mean_error(p.pair.m2, light.first, p.pair.gt_12);
-  BOOST_TEST_MESSAGE("automatic map 1->2 " << automatic_error << ", refined (default) " << light_error);
-  BOOST_TEST(read_text(in_scratch("light.json")).find("\"keep_input\": \"auto\"") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("light.json")).find("\"keep_consistent_input_maps\": false") != std::string::npos);
-  BOOST_TEST(light_error < automatic_error);
-  run(" --init-12 " + in_scratch("b12.map") + " --init-21 " + in_scratch("b21.map"), "given");
-  BOOST_TEST(read_text(in_scratch("given.json")).find("\"outer_iterations\": 2,") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("given.json")).find("\"stop_when_consistency_worsens\": false") != std::string::npos);
-  BOOST_TEST(read_text(in_scratch("given.json")).find("\"consistency_weight\": 1,") != std::string::npos);
-  BOOST_TEST(smc::number_of_inconsistent_vertices(all.first, all.second) <=
-             smc::number_of_inconsistent_vertices(f12, f21));
 }
 
 BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)
 {
   // Given maps that turn one end of the capsule (z > 3 of [-1, 5]) by 180 degrees about its axis: torn
-  // along a ring; the rest (two thirds) is the core. --repair --no-refine writes exactly the maps of
-  // the library's repair_torn_maps().
+  // along a ring; the rest (two thirds) is the core. Repaired without the comparison and not refined,
+  // comap writes exactly the maps of the library's repair_torn_maps().
   const Cli_pair& p = cli_pair();
   const Mesh& m1 = p.pair.m1;
   auto turned = [&](std::size_t v) {
@@ -255,13 +240,15 @@ BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)
   write_map(in_scratch("turned12.map"), t12, 0);
   write_map(in_scratch("turned21.map"), t21, 0);
   const Run r = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("turned12.map") + " --init-21 " +
-                      in_scratch("turned21.map") + " --index-base 0 --repair --no-refine --init-basis 40 --quiet" +
+                      in_scratch("turned21.map") + " --index-base 0 --set compare_with_automatic_maps=false" +
+                      " --set use_refinement=false --set zoomout_final_size=40 --quiet" +
                       " --out-12 " + in_scratch("rep12.map") + " --out-21 " + in_scratch("rep21.map") + " --stats " +
                       in_scratch("repair.json"));
   BOOST_TEST_REQUIRE(r.code == 0, r.err);
   std::vector<std::size_t> l12 = t12, l21 = t21;
   const smc::Automatic_initialization_result lib =
-      smc::repair_torn_maps<Tag>(p.pair.m1, p.pair.m2, l12, l21, smc::parameters::zoomout_final_size(40));
+      smc::repair_torn_maps<Tag>(p.pair.m1, p.pair.m2, l12, l21,
+                                 smc::parameters::zoomout_final_size(40, smc::parameters::compare_with_automatic_maps(false)));
   BOOST_TEST(read_map(in_scratch("rep12.map"), 0) == l12);
   BOOST_TEST(read_map(in_scratch("rep21.map"), 0) == l21);
   const double before = mean_error(p.pair.m2, t12, p.pair.gt_12), after = mean_error(p.pair.m2, l12, p.pair.gt_12);
@@ -273,20 +260,21 @@ BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)
   BOOST_TEST(lib.torn_fraction < lib.torn_fraction_before);
   BOOST_TEST(after < 0.5 * before);  // measured: 0.12 -> 0.027
   const std::string stats = read_text(in_scratch("repair.json"));
-  BOOST_TEST(stats.find("\"repair\"") != std::string::npos);
+  BOOST_TEST(stats.find("\"repaired\": true") != std::string::npos);
   BOOST_TEST(stats.find("\"torn_fraction_before\"") != std::string::npos);
   // The kept repair pass's maps are maps of the automatic initialisation: they are refined with the
   // preset for automatic maps (consistency weight 0.5; 1 for given maps).
   BOOST_TEST(stats.find("\"consistency_weight\": 0.5,") != std::string::npos);
-  // --compare-automatic: the given maps compete with the automatic maps, as they are or (with
-  // --repair) repaired, exactly as in the library.
+  // The comparison (on by default): the given maps compete with the automatic maps, as they are
+  // (repair_given_maps=false) or repaired (the default), exactly as in the library.
   double unrepaired_distortion = 0;
   for(const bool with_repair : {false, true})
   {
     const std::string tag = with_repair ? "rc" : "c";
     const Run c = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("turned12.map") + " --init-21 " +
-                        in_scratch("turned21.map") + " --index-base 0 --compare-automatic" +
-                        (with_repair ? " --repair" : "") + " --no-refine --init-basis 40 --quiet --out-12 " +
+                        in_scratch("turned21.map") + " --index-base 0" +
+                        (with_repair ? "" : " --set repair_given_maps=false") +
+                        " --set use_refinement=false --set zoomout_final_size=40 --quiet --out-12 " +
                         in_scratch(tag + "12.map") + " --out-21 " + in_scratch(tag + "21.map") + " --stats " +
                         in_scratch(tag + ".json"));
     BOOST_TEST_REQUIRE(c.code == 0, c.err);
@@ -304,7 +292,7 @@ BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)
     BOOST_TEST(read_map(in_scratch(tag + "12.map"), 0) == k12);
     BOOST_TEST(read_map(in_scratch(tag + "21.map"), 0) == k21);
     const std::string compare_stats = read_text(in_scratch(tag + ".json"));
-    BOOST_TEST(compare_stats.find("\"compared_with_automatic_maps\": true") != std::string::npos);
+    BOOST_TEST(compare_stats.find("\"compared\": true") != std::string::npos);
     BOOST_TEST(compare_stats.find(std::string("\"automatic_maps_kept\": ") +
                                   (compared.automatic_maps_kept ? "true" : "false")) != std::string::npos);
     // Unrepaired, the turned end is far more distorted than the automatic maps, which replace it
@@ -314,11 +302,12 @@ BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)
       BOOST_TEST(compare_stats.find("\"consistency_weight\": 0.5,") != std::string::npos);
     if(!with_repair) unrepaired_distortion = compared.given_maps_distortion;
   }
-  // --compare-automatic-above: given maps distorted less than the threshold are kept as they are,
-  // without the automatic maps.
+  // automatic_maps_comparison_threshold: given maps distorted less than the threshold are kept as
+  // they are, without the automatic maps.
   const Run k = comap("match " + p.a + " " + p.b + " --init-12 " + in_scratch("turned12.map") + " --init-21 " +
-                      in_scratch("turned21.map") + " --index-base 0 --compare-automatic --compare-automatic-above " +
-                      std::to_string(1.01 * unrepaired_distortion) + " --no-refine --init-basis 40 --quiet" +
+                      in_scratch("turned21.map") + " --index-base 0 --set repair_given_maps=false" +
+                      " --set automatic_maps_comparison_threshold=" + std::to_string(1.01 * unrepaired_distortion) +
+                      " --set use_refinement=false --set zoomout_final_size=40 --quiet" +
                       " --out-12 " + in_scratch("k12.map") + " --out-21 " + in_scratch("k21.map") + " --stats " +
                       in_scratch("k.json"));
   BOOST_TEST_REQUIRE(k.code == 0, k.err);

@@ -131,20 +131,25 @@ BOOST_AUTO_TEST_CASE(bad_maps)
 BOOST_AUTO_TEST_CASE(bad_options)
 {
   const Cli_pair& p = cli_pair();
-  expect_failure(match_args(p.a, p.b, " --candidates abc"), 2, {"--candidates", "not an integer"});
-  expect_failure(match_args(p.a, p.b, " --mu -1"), 2, {"unary_weight"});
-  expect_failure(match_args(p.a, p.b, " --rings 3,,2"), 2, {"--rings"});
-  expect_failure(match_args(p.a, p.b, " --coupling maybe"), 2, {"--coupling", "on or off"});
-  expect_failure(match_args(p.a, p.b, " --oracle fast"), 2, {"--oracle", "auto, dense, local"});
+  // Settings by name (--set, --settings): the setting, its type or range, and the closest name.
+  expect_failure(match_args(p.a, p.b, " --set number_of_candidates=abc"), 2, {"number_of_candidates", "integer"});
+  expect_failure(match_args(p.a, p.b, " --set unary_weight=-1"), 2, {"unary_weight", "out of its range [0, inf)"});
+  expect_failure(match_args(p.a, p.b, " --set ring_schedule=3,,2"), 2, {"ring_schedule", "expected a number"});
+  expect_failure(match_args(p.a, p.b, " --set use_coupling=maybe"), 2, {"use_coupling", "true or false"});
+  expect_failure(match_args(p.a, p.b, " --set distance_oracle=fast"), 2, {"distance_oracle", "automatic, dense or local"});
+  expect_failure(match_args(p.a, p.b, " --set number_of_repair_passes=-1"), 2, {"number_of_repair_passes", "[0, 100]"});
+  expect_failure(match_args(p.a, p.b, " --set tear_threshold=0"), 2, {"tear_threshold", "(0, inf)"});
+  expect_failure(match_args(p.a, p.b, " --set tear_area_fraction=1.5"), 2, {"tear_area_fraction", "out of its range"});
+  expect_failure(match_args(p.a, p.b, " --set numbr_of_candidates=3"), 2,
+                 {"unknown setting \"numbr_of_candidates\"", "did you mean \"number_of_candidates\""});
+  expect_failure(match_args(p.a, p.b, " --set number_of_candidates"), 2, {"--set needs NAME=VALUE"});
+  write_text(in_scratch("typo.json"), "{\"number_of_candidate\": 30}\n");
+  expect_failure(match_args(p.a, p.b, " --settings " + in_scratch("typo.json")), 1,
+                 {"number_of_candidate", "did you mean \"number_of_candidates\""});
+  expect_failure(match_args(p.a, p.b, " --settings " + in_scratch("missing.json")), 1, {"missing.json"});
   expect_failure(match_args(p.a, p.b, " --index-base 2"), 2, {"--index-base"});
-  expect_failure(match_args(p.a, p.b, " --init-select-by luck"), 2, {"--init-select-by", "distortion or descriptors"});
-  expect_failure(match_args(p.a, p.b, " --init-distortion-samples 1"), 2, {"--init-distortion-samples"});
-  expect_failure(match_args(p.a, p.b, " --init-repair-passes -1"), 2, {"--init-repair-passes"});
-  expect_failure(match_args(p.a, p.b, " --compare-automatic"), 2, {"--compare-automatic", "--init-12"});
-  expect_failure(match_args(p.a, p.b, " --compare-automatic-above 0.05"), 2,
-                 {"--compare-automatic-above needs --compare-automatic"});
-  expect_failure(match_args(p.a, p.b, " --init-tear-threshold 0"), 2, {"tear_threshold"});
-  expect_failure(match_args(p.a, p.b, " --init-tear-fraction 1.5"), 2, {"tear_min_fraction"});
+  // The expert flags of earlier versions are gone: settings go through --set.
+  expect_failure(match_args(p.a, p.b, " --candidates 30"), 2, {"unknown option --candidates"});
   expect_failure(match_args(p.a, p.b, " --frobnicate"), 2, {"unknown option --frobnicate"});
   expect_failure(match_args(p.a, p.b, " --init-12 " + in_scratch("x.map")), 2, {"--init-21"});
   expect_failure("match " + p.a + " " + p.b + " --quiet", 2, {"--out-12"});

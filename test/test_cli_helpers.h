@@ -14,6 +14,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -143,12 +144,31 @@ inline const Cli_pair& cli_pair()
   return p;
 }
 
-/// Options that keep the small test runs fast (few eigenpairs, a short schedule).
-inline std::string fast_options()
+/// Settings that keep the small test runs fast (few eigenpairs, one functional map fit, a short
+/// schedule), as a settings file: " --quiet --settings FILE". The settings named in `left_out`
+/// keep their defaults.
+inline std::string fast_options(const std::vector<std::string>& left_out = {})
 {
-  return " --quiet --eigenpairs 30 --wks-energies 30 --rings 3,2 --candidates 10 --trws-iterations 30"
-         " --init-basis 40 --init-fits 20:0.03:0.3 --init-selection-size 30 --init-samples 300"
-         " --init-wks-energies 40 --init-signed-smoothing 30";
+  const std::vector<std::pair<std::string, std::string> > fast = {
+      {"number_of_eigenpairs", "30"},        {"number_of_wks_energies", "30"},
+      {"ring_schedule", "[3, 2]"},           {"number_of_candidates", "10"},
+      {"trws_number_of_iterations", "30"},   {"zoomout_final_size", "40"},
+      {"initialization_fits", "[[20, 0.03, 0.3]]"}, {"fit_selection_basis_size", "30"},
+      {"zoomout_number_of_samples", "300"},  {"initialization_number_of_wks_energies", "40"},
+      {"signed_descriptor_smoothing", "30"}};
+  std::string json, file = "fast";
+  for(const auto& s : fast)
+  {
+    if(std::find(left_out.begin(), left_out.end(), s.first) != left_out.end())
+    {
+      file += "-" + s.first;
+      continue;
+    }
+    json += std::string(json.empty() ? "{\n" : ",\n") + "  \"" + s.first + "\": " + s.second;
+  }
+  file = in_scratch(file + ".json");
+  write_text(file, json + "\n}\n");
+  return " --quiet --settings " + file;
 }
 
 // ------------------------------------------------------------------- a minimal PNG writer

@@ -275,20 +275,20 @@ BOOST_AUTO_TEST_CASE(builders_and_parameters)
   BOOST_TEST(dense.distance(0, 100) != heat.distance(0, 100));
   BOOST_TEST(std::abs(dense.distance(0, 100) - heat.distance(0, 100)) < 0.05);
 
-  const auto local = smc::make_local_distance_oracle(sm, smc::parameters::number_of_landmarks(10, smc::parameters::local_radius(0.5)));
+  const auto local = smc::make_local_distance_oracle(sm, smc::parameters::oracle_landmarks(10, smc::parameters::local_radius(0.5)));
   BOOST_TEST(local.local_radius() == 0.5f);
   BOOST_TEST(local.number_of_landmarks() == 10);
-  const auto by_rings = smc::make_local_distance_oracle(sm, smc::parameters::number_of_rings(3));
+  const auto by_rings = smc::make_local_distance_oracle(sm, smc::parameters::oracle_radius(3.0));
   const smci::Indexed_mesh m = smci::make_indexed_mesh(sm);
   BOOST_TEST(by_rings.local_radius() == static_cast<float>(3 * smci::Edge_length_graph(m).mean_edge_length),
              boost::test_tools::tolerance(1e-6f));
-  BOOST_TEST(by_rings.number_of_landmarks() == std::min(162, smc::default_number_of_landmarks));
+  BOOST_TEST(by_rings.number_of_landmarks() == std::min(162, smc::Matching_settings().oracle_landmarks));
   for(int l = 0; l < 162; ++l)
     if(local.is_local(0, l)) BOOST_TEST(std::abs(local.distance(0, l) - dense.distance(0, l)) < 1e-3f);
 
   BOOST_TEST(contains(error_of([&] { smc::make_local_distance_oracle(sm, smc::parameters::local_radius(-1.0)); }),
                       "local radius"));
-  BOOST_TEST(contains(error_of([&] { smc::make_local_distance_oracle(sm, smc::parameters::number_of_landmarks(0)); }),
+  BOOST_TEST(contains(error_of([&] { smc::make_local_distance_oracle(sm, smc::parameters::oracle_landmarks(0)); }),
                       "landmarks"));
   const Mesh empty;
   BOOST_TEST(contains(error_of([&] { smc::make_dense_distance_oracle(empty); }), "empty"));

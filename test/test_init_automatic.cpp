@@ -549,15 +549,17 @@ BOOST_AUTO_TEST_CASE(tear_repair_restores_swapped_limbs)
   const smc::Automatic_initialization_result a = smc::automatic_initial_maps(
       f.pair.m1, f.pair.m2, a12, a21, params::number_of_repair_passes(0));
   BOOST_TEST(a.repair_passes == 0);
-  // A tear threshold larger than the shapes sees no tear, and no repair pass leaves the maps alone.
+  // A tear threshold larger than the shapes sees no tear, and no repair pass leaves the maps alone
+  // (without the comparison with the automatic maps, which would replace these swapped maps).
   std::vector<std::size_t> n12 = s.map_12, n21 = s.map_21;
-  const smc::Automatic_initialization_result n =
-      smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21, params::tear_threshold(10.0));
+  const auto no_comparison = params::compare_with_automatic_maps(false);
+  const smc::Automatic_initialization_result n = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, n12, n21, params::tear_threshold(10.0, no_comparison));
   BOOST_TEST(n.repair_passes == 0);
   BOOST_TEST(n.torn_fraction_before == 0.0);
   BOOST_TEST(n12 == s.map_12);
   const smc::Automatic_initialization_result z =
-      smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21, params::number_of_repair_passes(0));
+      smc::repair_torn_maps(f.pair.m1, f.pair.m2, n12, n21, params::number_of_repair_passes(0, no_comparison));
   BOOST_TEST(z.repair_passes == 0);
   BOOST_TEST(z.torn_fraction_before > 0.03);  // measured, not repaired
   BOOST_TEST(n12 == s.map_12);
@@ -699,9 +701,9 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   std::vector<std::size_t> t12 = f.pair.gt_12, t21 = f.pair.gt_21;
   const smc::Automatic_initialization_result t = smc::compare_with_automatic_maps(
       f.pair.m1, f.pair.m2, t12, t21,
-      params::spectral_basis_size(
-          3, params::zoomout_final_size(4, params::zoomout_pass_size(
-                                               4, params::automatic_maps_comparison_threshold(0.0)))));
+      params::initialization_fits(
+          smc::Fit_list{{3, 0.03, 0.3}},
+          params::zoomout_final_size(4, params::zoomout_pass_size(4, params::automatic_maps_comparison_threshold(0.0)))));
   BOOST_TEST_MESSAGE("true maps against coarse automatic maps: sample distortion " << t.given_maps_distortion
                                                                                   << " against "
                                                                                   << t.automatic_maps_distortion);
@@ -722,12 +724,13 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
   BOOST_TEST(v12 == f.pair.gt_12);
   BOOST_TEST(v21 == f.pair.gt_21);
   BOOST_TEST(c.given_maps_distortion > 0.035);
-  // repair_torn_maps() compares the repaired maps when asked, and only then (threshold 0: always).
+  // repair_torn_maps() compares the repaired maps unless told not to (threshold 0: always).
   std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21, u12 = s.map_12, u21 = s.map_21;
   const smc::Automatic_initialization_result r = smc::repair_torn_maps(
       f.pair.m1, f.pair.m2, r12, r21,
       params::compare_with_automatic_maps(true, params::automatic_maps_comparison_threshold(0.0)));
-  const smc::Automatic_initialization_result u = smc::repair_torn_maps(f.pair.m1, f.pair.m2, u12, u21);
+  const smc::Automatic_initialization_result u =
+      smc::repair_torn_maps(f.pair.m1, f.pair.m2, u12, u21, params::compare_with_automatic_maps(false));
   BOOST_TEST(r.compared_with_automatic_maps);
   BOOST_TEST(!u.compared_with_automatic_maps);
   BOOST_TEST(u.repair_passes >= 1);
@@ -870,13 +873,16 @@ BOOST_AUTO_TEST_CASE(results_are_deterministic_and_parallel_matches_sequential)
 
 BOOST_AUTO_TEST_CASE(prepared_shapes_give_the_same_maps)
 {
-  // The stateful path reuses each shape's flat mesh and (with enough eigenpairs) its spectrum.
+  // The stateful path reuses each shape's flat mesh and its spectrum: a shape holds the
+  // initialisation's eigenpairs (200) whatever the refinement uses (here 200 and 40).
   const Pair_fixture& f = asymmetric();
   std::vector<std::size_t> a12, a21, b12, b21, c12, c21;
   smc::automatic_initial_maps(f.pair.m1, f.pair.m2, a12, a21);
   const smc::Correspondence_shape<Mesh> s1(f.pair.m1, params::number_of_eigenpairs(200)),
-      s2(f.pair.m2, params::number_of_eigenpairs(40));  // reused / recomputed
-  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21).reused_spectra == 1);
+      s2(f.pair.m2, params::number_of_eigenpairs(40));
+  BOOST_TEST(s2.spectrum().number_of_eigenpairs() == 40);
+  BOOST_TEST(s2.data().largest_spectrum().number_of_eigenpairs() == 200);
+  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21).reused_spectra == 2);
   BOOST_TEST(a12 == b12);
   BOOST_TEST(a21 == b21);
   // One eigensolve serves both: a shape that uses 100 eigenpairs of a given spectrum of 200
@@ -895,7 +901,6 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_give_the_same_maps)
   const std::shared_ptr<const smc::Laplace_beltrami_spectrum> null;
   BOOST_CHECK_THROW(smc::Correspondence_shape<Mesh>(f.pair.m2, params::precomputed_spectrum(null)),
                     smc::Invalid_parameter_error);
-  BOOST_TEST(s2.data().largest_spectrum().number_of_eigenpairs() == 40);
   std::vector<std::size_t> d12, d21, e12, e21;
   BOOST_TEST(smc::automatic_initial_maps(s1, s3, d12, d21).reused_spectra == 2);
   BOOST_TEST(a12 == d12);
@@ -907,29 +912,44 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_give_the_same_maps)
   // Then refined with the same shapes.
   smc::refine_coupled_maps(s1, s2, b12, b21);
   BOOST_TEST(f.error_12(b12, f.pair.gt_12) < 0.015);
+  // A mesh too small for the initialisation's basis is refused when it is prepared, with a
+  // message naming the setting that would let it through.
   const Mesh tiny = icosphere(1);
-  const smc::Correspondence_shape<Mesh> small(tiny, params::number_of_eigenpairs(10));
-  BOOST_CHECK_THROW(smc::automatic_initial_maps(small, s2, c12, c21), smc::Invalid_mesh_error);
+  try
+  {
+    const smc::Correspondence_shape<Mesh> small(tiny, params::number_of_eigenpairs(10));
+    BOOST_ERROR("a 42-vertex shape was prepared for a basis of 200");
+  }
+  catch(const smc::Invalid_mesh_error& e)
+  {
+    BOOST_TEST(std::string(e.what()).find("zoomout_final_size") != std::string::npos);
+  }
+  const smc::Correspondence_shape<Mesh> small(tiny, params::number_of_eigenpairs(
+                                                        10, params::zoomout_final_size(
+                                                                20, params::zoomout_pass_size(
+                                                                        20, params::fit_selection_basis_size(20)))));
+  BOOST_CHECK_THROW(smc::automatic_initial_maps(small, s2, c12, c21, params::zoomout_final_size(60)),
+                    smc::Invalid_mesh_error);
 }
 
 BOOST_AUTO_TEST_CASE(prepared_shapes_keep_the_initialization_descriptors)
 {
-  // A shape keeps what the initialisation computed for it (descriptors, and the spectrum when its
-  // own does not serve): later calls with the same descriptor settings take it and give the same
-  // maps; other descriptor settings compute it again. repair_torn_maps() and
+  // A shape is prepared with the initialisation's spectrum and descriptors: calls with the same
+  // descriptor settings take them and give the maps of the overload on meshes; other descriptor
+  // settings compute them again, and the shape keeps those. repair_torn_maps() and
   // compare_with_automatic_maps() on shapes give the maps of the overloads on meshes.
   const Pair_fixture& f = symmetric();
   const Swapped_arms s = swapped_arms(f);
   const smc::Correspondence_shape<Mesh> s1(f.pair.m1, params::number_of_eigenpairs(200)),
-      s2(f.pair.m2, params::number_of_eigenpairs(40));  // its spectrum does not serve
+      s2(f.pair.m2, params::number_of_eigenpairs(40));
   std::vector<std::size_t> m12, m21, a12, a21, b12, b21;
   smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21);
   const smc::Automatic_initialization_result first = smc::automatic_initial_maps(s1, s2, a12, a21);
-  BOOST_TEST(first.reused_descriptors == 0);
-  BOOST_TEST(first.reused_spectra == 1);
+  BOOST_TEST(first.reused_descriptors == 2);
+  BOOST_TEST(first.reused_spectra == 2);
   const smc::Automatic_initialization_result again = smc::automatic_initial_maps(s1, s2, b12, b21);
   BOOST_TEST(again.reused_descriptors == 2);
-  BOOST_TEST(again.reused_spectra == 1);
+  BOOST_TEST(again.reused_spectra == 2);
   BOOST_TEST(a12 == m12);
   BOOST_TEST(a21 == m21);
   BOOST_TEST(b12 == m12);
@@ -937,8 +957,11 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_keep_the_initialization_descriptors)
   // Settings outside the descriptors (here the tear repair) keep them; other WKS energies do not,
   // and then replace them (one entry per shape).
   BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, params::number_of_repair_passes(0)).reused_descriptors == 2);
-  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, params::number_of_wks_energies(60)).reused_descriptors == 0);
+  // The refinement's WKS energies are another setting, which the initialisation does not read.
   BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, params::number_of_wks_energies(60)).reused_descriptors == 2);
+  const auto energies = params::initialization_number_of_wks_energies(60);
+  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, energies).reused_descriptors == 0);
+  BOOST_TEST(smc::automatic_initial_maps(s1, s2, b12, b21, energies).reused_descriptors == 2);
 
   // The given-maps functions on shapes: the maps of the overloads on meshes.
   std::vector<std::size_t> r12 = s.map_12, r21 = s.map_21, q12 = s.map_12, q21 = s.map_21;
@@ -962,18 +985,19 @@ BOOST_AUTO_TEST_CASE(prepared_shapes_keep_the_initialization_descriptors)
   std::vector<std::size_t> short12(s.map_12.begin(), s.map_12.end() - 1), ok21 = s.map_21;
   BOOST_CHECK_THROW(smc::repair_torn_maps(s1, s2, short12, ok21), smc::Invalid_map_error);
 
-  // Concurrent calls on new shapes compute each shape's data once.
+  // Concurrent calls with new descriptor settings compute each shape's descriptors once.
   const smc::Correspondence_shape<Mesh> t1(f.pair.m1, params::number_of_eigenpairs(40)),
       t2(f.pair.m2, params::number_of_eigenpairs(40));
-  std::vector<std::size_t> x12, x21, y12, y21;
+  std::vector<std::size_t> x12, x21, y12, y21, z12, z21;
+  smc::automatic_initial_maps(f.pair.m1, f.pair.m2, z12, z21, energies);
   smc::Automatic_initialization_result x, y;
-  std::thread other([&] { x = smc::automatic_initial_maps(t1, t2, x12, x21); });
-  y = smc::automatic_initial_maps(t1, t2, y12, y21);
+  std::thread other([&] { x = smc::automatic_initial_maps(t1, t2, x12, x21, energies); });
+  y = smc::automatic_initial_maps(t1, t2, y12, y21, energies);
   other.join();
   BOOST_TEST(x.reused_descriptors + y.reused_descriptors == 2);
-  BOOST_TEST(x12 == m12);
-  BOOST_TEST(y12 == m12);
-  BOOST_TEST(y21 == m21);
+  BOOST_TEST(x12 == z12);
+  BOOST_TEST(y12 == z12);
+  BOOST_TEST(y21 == z21);
 }
 
 BOOST_AUTO_TEST_CASE(units_do_not_matter)
@@ -1009,7 +1033,7 @@ BOOST_AUTO_TEST_CASE(bad_input_is_named)
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::zoomout_step(0)),
                     smc::Invalid_parameter_error);
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
-                                                params::spectral_basis_size(50, params::zoomout_final_size(40))),
+                                                params::initialization_fits(smc::Fit_list{{50, 0.03, 0.3}}, params::zoomout_final_size(40))),
                     smc::Invalid_parameter_error);
   // Landmarks out of range.
   const std::vector<std::pair<std::size_t, std::size_t> > bad = {{0, num_vertices(f.pair.m2)}};

@@ -179,65 +179,66 @@ BOOST_AUTO_TEST_CASE(perturbed_maps_are_improved)
   BOOST_TEST(after < 0.5 * before);
 }
 
-BOOST_AUTO_TEST_CASE(automatic_maps_preset_sets_six_defaults_and_given_parameters_win)
+BOOST_AUTO_TEST_CASE(the_origin_of_the_maps_sets_five_defaults_and_given_parameters_win)
 {
-  const smc::Refinement_settings given = smc::Refinement_settings::from(params::default_values());
+  const smc::Refinement_settings given = smc::Refinement_settings::from(params::default_values(), smc::Map_origin::given);
   BOOST_TEST(given.number_of_candidates == 20);
   BOOST_TEST((given.ring_schedule == std::vector<int>{6, 4, 3, 2, 1}));
   BOOST_TEST(given.consistency_weight == 1.0);
   BOOST_TEST(!given.stop_when_consistency_worsens);
-  BOOST_TEST(given.keep_consistent_input_maps);
   BOOST_TEST(given.trws_number_of_iterations == 100);
-  const smc::Refinement_settings explicit_given =
-      smc::Refinement_settings::from(params::refinement_preset(smc::Refinement_preset::given_maps));
-  BOOST_TEST(explicit_given.number_of_candidates == given.number_of_candidates);
-  BOOST_TEST((explicit_given.ring_schedule == given.ring_schedule));
 
   const smc::Refinement_settings automatic =
-      smc::Refinement_settings::from(params::refinement_preset(smc::Refinement_preset::automatic_maps));
+      smc::Refinement_settings::from(params::default_values(), smc::Map_origin::automatic);
   BOOST_TEST(automatic.number_of_candidates == 40);
   BOOST_TEST((automatic.ring_schedule == std::vector<int>{4, 3, 2, 1}));
   BOOST_TEST(automatic.consistency_weight == 0.5);
   BOOST_TEST(automatic.stop_when_consistency_worsens);
-  BOOST_TEST(!automatic.keep_consistent_input_maps);
   BOOST_TEST(automatic.trws_number_of_iterations == 15);
-  BOOST_TEST(automatic.unary_weight == given.unary_weight);  // not one of the six
+  BOOST_TEST(automatic.unary_weight == given.unary_weight);  // not one of the five
   BOOST_TEST(automatic.use_coupling);
+  // The struct's own defaults are the registry's for automatic maps.
+  const smc::Refinement_settings plain;
+  BOOST_TEST(plain.number_of_candidates == automatic.number_of_candidates);
+  BOOST_TEST((plain.ring_schedule == automatic.ring_schedule));
 
-  // A parameter given explicitly overrides the preset, wherever it is in the pack.
+  // A parameter given explicitly overrides the origin's default, directly or in matching_settings.
+  smc::Matching_settings m;
+  m.set("number_of_candidates", 7.0);
   for(const smc::Refinement_settings& s :
-      {smc::Refinement_settings::from(params::refinement_preset(
-           smc::Refinement_preset::automatic_maps, params::number_of_candidates(7, params::keep_consistent_input_maps(true)))),
-       smc::Refinement_settings::from(params::number_of_candidates(
-           7, params::keep_consistent_input_maps(true, params::refinement_preset(smc::Refinement_preset::automatic_maps))))})
+      {smc::Refinement_settings::from(params::number_of_candidates(7), smc::Map_origin::given),
+       smc::Refinement_settings::from(params::matching_settings(m), smc::Map_origin::given)})
   {
     BOOST_TEST(s.number_of_candidates == 7);
-    BOOST_TEST(s.keep_consistent_input_maps);
-    BOOST_TEST((s.ring_schedule == std::vector<int>{4, 3, 2, 1}));
-    BOOST_TEST(s.trws_number_of_iterations == 15);
+    BOOST_TEST((s.ring_schedule == std::vector<int>{6, 4, 3, 2, 1}));
+    BOOST_TEST(s.trws_number_of_iterations == 100);
   }
 
-  // The refinement with the preset is the refinement with the six parameters.
+  // refine_coupled_maps() uses the defaults for given maps: the same as the five parameters.
   const Fixture& f = fixture();
   smc::Vertex_index_map_vector a12 = perturbed(f.pair.gt_12, f.pair.m2, 0.3, 4, 5u);
   smc::Vertex_index_map_vector a21 = perturbed(f.pair.gt_21, f.pair.m1, 0.3, 4, 15u);
   smc::Vertex_index_map_vector b12 = a12, b21 = a21;
-  const smc::Coupled_refinement_result ra =
-      smc::refine_coupled_maps(f.s1, f.s2, a12, a21, params::refinement_preset(smc::Refinement_preset::automatic_maps));
+  const smc::Coupled_refinement_result ra = smc::refine_coupled_maps(f.s1, f.s2, a12, a21);
   const smc::Coupled_refinement_result rb = smc::refine_coupled_maps(
       f.s1, f.s2, b12, b21,
       params::consistency_weight(
-          0.5, params::keep_consistent_input_maps(
-                   false, params::stop_when_consistency_worsens(
-                              true, params::ring_schedule(std::vector<int>{4, 3, 2, 1},
-                                                          params::number_of_candidates(
-                                                              40, params::trws_number_of_iterations(15)))))));
+          1.0, params::stop_when_consistency_worsens(
+                   false, params::ring_schedule(std::vector<int>{6, 4, 3, 2, 1},
+                                                params::number_of_candidates(20, params::trws_number_of_iterations(100))))));
   BOOST_TEST(ra.steps.size() == rb.steps.size());
   BOOST_TEST(!ra.steps.empty());
-  for(const smc::Refinement_step& step : ra.steps) BOOST_TEST(step.trws_iterations <= 15u);
-  BOOST_TEST(ra.steps.front().rings == 4);
+  BOOST_TEST(ra.steps.front().rings == 6);
   BOOST_TEST((a12 == b12));
   BOOST_TEST((a21 == b21));
+  // With the five automatic values the solves are shorter.
+  smc::Vertex_index_map_vector c12 = perturbed(f.pair.gt_12, f.pair.m2, 0.3, 4, 5u);
+  smc::Vertex_index_map_vector c21 = perturbed(f.pair.gt_21, f.pair.m1, 0.3, 4, 15u);
+  const smc::Coupled_refinement_result rc =
+      smc::refine_coupled_maps(f.s1, f.s2, c12, c21, params::trws_number_of_iterations(15, params::ring_schedule(std::vector<int>{4, 3, 2, 1})));
+  BOOST_TEST(!rc.steps.empty());
+  for(const smc::Refinement_step& step : rc.steps) BOOST_TEST(step.trws_iterations <= 15u);
+  BOOST_TEST(rc.steps.front().rings == 4);
 }
 
 BOOST_AUTO_TEST_CASE(exact_maps_stay_exact)

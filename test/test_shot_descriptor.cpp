@@ -431,7 +431,7 @@ BOOST_AUTO_TEST_CASE(distinctive_under_a_near_isometric_bend)
   const Eigen::MatrixXd a = smc::compute_shot_descriptors(straight);
   const Eigen::MatrixXd b = smc::compute_shot_descriptors(bent);
   const smc::internal::Indexed_mesh im = smc::internal::make_indexed_mesh(straight);
-  const double radius = smc::internal::default_shot_radius * std::sqrt(im.total_area);
+  const double radius = smc::Matching_settings().shot_radius * std::sqrt(im.total_area);
 
   // For tested vertices v (away from the open ends): rank of |a_v - b_v| among |a_v - b_w| for
   // the vertices w farther than 2R from v, and the nearest descriptor on the bent tube.

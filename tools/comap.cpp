@@ -16,7 +16,6 @@
 #include "comap_pipeline.h"
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
-#include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
@@ -64,49 +63,22 @@ void check_writable(const std::string& file)
 
 namespace {
 
-/// Pairs "i j" of vertex indices, one per line ('#' starts a comment), checked against the sizes.
-std::vector<std::pair<std::size_t, std::size_t> > read_landmarks(const std::string& file, int index_base,
-                                                                 std::size_t n1, std::size_t n2)
-{
-  std::ifstream in(file);
-  if(!in) throw Input_error("cannot open the landmark file " + file);
-  std::vector<std::pair<std::size_t, std::size_t> > out;
-  std::string line;
-  for(int number = 1; std::getline(in, line); ++number)
-  {
-    const std::string content = line.substr(0, line.find('#'));
-    if(content.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::istringstream fields(content);
-    long long a = 0, b = 0;
-    std::string rest;
-    if(!(fields >> a >> b) || (fields >> rest))
-      throw Input_error(file + ":" + std::to_string(number) + ": expected two vertex indices, found '" + content + "'");
-    if(a < index_base || b < index_base || std::size_t(a - index_base) >= n1 || std::size_t(b - index_base) >= n2)
-      throw Input_error(file + ":" + std::to_string(number) + ": landmark (" + std::to_string(a) + ", " +
-                        std::to_string(b) + ") is out of range (" + std::to_string(index_base) + "-based; " +
-                        std::to_string(n1) + " and " + std::to_string(n2) + " vertices)");
-    out.emplace_back(std::size_t(a - index_base), std::size_t(b - index_base));
-  }
-  if(out.empty()) throw Input_error("the landmark file " + file + " has no landmarks");
-  return out;
-}
-
 std::string index_base_help() { return "index of the first vertex in map and correspondence files (0 or 1)"; }
 
 // ------------------------------------------------------------------------------------ match
 
 int match(int argc, char** argv)
 {
-  Settings settings;
+  smc::Matching_settings settings;
   Common_options common;
-  std::string out_12, out_21, init_12, init_21, stats;
+  std::string out_12, out_21, init_12, init_21, stats, landmarks_file;
   int index_base = 1;
-  bool no_refine = false, repair = false, compare = false;
   Option_parser p("match", "comap match SOURCE TARGET --out-12 FILE --out-21 FILE [options]",
-                  "Computes dense point-to-point maps SOURCE -> TARGET and TARGET -> SOURCE: from the given initial maps, "
-                  "or from automatic ones (functional maps + ZoomOut), refined jointly by the coupled optimisation of "
-                  "Azencot, Dubrovina and Guibas (2019). Meshes: OFF, PLY, OBJ or STL; connected, manifold triangle "
-                  "meshes. Map files: one target vertex index per line, line i for source vertex i.");
+                  "Computes dense point-to-point maps SOURCE -> TARGET and TARGET -> SOURCE with the library's "
+                  "match_shapes(): automatic initial maps (functional maps + ZoomOut), or the given ones repaired and "
+                  "compared with the automatic ones, then the coupled refinement of Azencot, Dubrovina and Guibas "
+                  "(2019), kept where it makes the maps better. Meshes: OFF, PLY, OBJ or STL; connected, manifold "
+                  "triangle meshes. Map files: one target vertex index per line, line i for source vertex i.");
   p.section("Files");
   p.value("--out-12", "FILE", "output: the map SOURCE -> TARGET", "", [&](const std::string& v) { out_12 = v; });
   p.value("--out-21", "FILE", "output: the map TARGET -> SOURCE", "", [&](const std::string& v) { out_21 = v; });
@@ -114,23 +86,14 @@ int match(int argc, char** argv)
           [&](const std::string& v) { init_12 = v; });
   p.value("--init-21", "FILE", "initial map TARGET -> SOURCE (give both or neither)", "",
           [&](const std::string& v) { init_21 = v; });
+  p.value("--landmarks", "FILE", "known correspondences for the automatic initialisation: one pair of vertex "
+          "indices 'SOURCE TARGET' per line", "", [&](const std::string& v) { landmarks_file = v; });
   p.value("--index-base", "0|1", index_base_help(), "1",
           [&](const std::string& v) { index_base = parse_int("--index-base", v, 0, 1); });
-  p.value("--stats", "FILE.json", "write the parameters, per-step statistics and timings as JSON", "",
-          [&](const std::string& v) { stats = v; });
-  std::string landmarks_file;
-  p.value("--landmarks", "FILE", "known correspondences for the automatic initialisation: one pair of vertex "
-          "indices 'SOURCE TARGET' per line (--index-base applies)", "",
-          [&](const std::string& v) { landmarks_file = v; });
-  p.flag("--no-refine", "write the initial (automatic) maps without refining them", [&] { no_refine = true; });
-  p.flag("--repair", "given initial maps: when their tears cut off parts of a mesh (swapped limbs), recompute "
-         "them with landmarks from their consistent core (automatic maps are always repaired, see "
-         "--init-repair-passes)", [&] { repair = true; });
-  p.flag("--compare-automatic", "given initial maps (after the repair with --repair): compare them with the "
-         "automatic maps of the pair and keep the less distorted ones (the time of one more initialisation; maps "
-         "distorted at most --compare-automatic-above are kept without it)",
-         [&] { compare = settings.initialization.compare_with_automatic_maps = true; });
-  add_algorithm_options(p, settings, true);
+  p.value("--stats", "FILE.json", "write the settings, the decisions, per-stage times and per-solve statistics as "
+          "JSON", "", [&](const std::string& v) { stats = v; });
+  p.section("Settings");
+  add_settings_options(p, settings);
   add_common_options(p, common);
   bool run = true;
   const std::vector<std::string> files = p.parse(argc, argv, 2, run);
@@ -139,19 +102,14 @@ int match(int argc, char** argv)
     throw Usage_error("match needs two meshes, SOURCE and TARGET (" + std::to_string(files.size()) + " given)");
   if(out_12.empty() || out_21.empty()) throw Usage_error("match needs --out-12 FILE and --out-21 FILE");
   if(init_12.empty() != init_21.empty()) throw Usage_error("give both --init-12 and --init-21, or neither");
-  const bool automatic = init_12.empty();
-  if(!automatic && !landmarks_file.empty())
-    throw Usage_error("--landmarks guides the automatic initialisation: do not combine it with --init-12/--init-21");
-  if(automatic && compare)
-    throw Usage_error("--compare-automatic compares given maps (--init-12/--init-21) with the automatic ones");
-  const bool repair_step = repair || compare;  // both need the initialisation's data
-  check_settings(settings, automatic || repair_step);
+  if(!landmarks_file.empty() && !init_12.empty())
+    throw Usage_error("--landmarks guide the automatic initial maps: give --landmarks or --init-12 and --init-21, "
+                      "not both");
   check_writable(out_12);
   check_writable(out_21);
   if(!stats.empty()) check_writable(stats);
   const Thread_limit limit(common.threads);
   const Progress progress(common.quiet);
-  const Stopwatch total;
 
   Stopwatch watch;
   Mesh m1 = read_triangle_mesh(files[0]);
@@ -161,60 +119,23 @@ int match(int argc, char** argv)
   progress.line("loaded " + files[0] + " (" + std::to_string(n1) + " vertices, " + std::to_string(num_faces(m1)) +
                 " triangles) and " + files[1] + " (" + std::to_string(n2) + " vertices, " +
                 std::to_string(num_faces(m2)) + " triangles)");
-  if(!landmarks_file.empty())
-    settings.initialization.landmarks = read_landmarks(landmarks_file, index_base, n1, n2);
+  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
+  if(!landmarks_file.empty()) landmarks = read_landmarks(landmarks_file, index_base, n1, n2);
+  Vertex_map given_12, given_21;
+  const bool given = !init_12.empty();
+  if(given)
+  {
+    given_12 = read_vertex_map(init_12, index_base, n1, n2);
+    given_21 = read_vertex_map(init_21, index_base, n2, n1);
+  }
+  Progress_visitor visitor(progress);
+  const auto np = smc::parameters::matching_settings(
+      settings, smc::parameters::landmarks(landmarks, smc::parameters::visitor(std::ref(visitor))));
   Vertex_map map_12, map_21;
-  if(!automatic)
-  {
-    map_12 = read_vertex_map(init_12, index_base, n1, n2);
-    map_21 = read_vertex_map(init_21, index_base, n2, n1);
-  }
-
-  const bool refine = !no_refine;
-  const bool initialization_data = automatic || repair_step;
-  // Both shapes at once (their eigensolvers are sequential).
-  std::unique_ptr<Prepared_shape> s1, s2;
-  smc::internal::invoke_both<Concurrency>(
-      [&] { s1 = prepare_shape(files[0], std::move(m1), settings, refine, initialization_data, progress); },
-      [&] { s2 = prepare_shape(files[1], std::move(m2), settings, refine, initialization_data, progress); });
-
-  smc::Automatic_initialization_result initialization;
-  if(automatic)
-  {
-    progress.line("computing automatic initial maps (functional maps + ZoomOut)");
-    initialization = initialize_maps(*s1, *s2, settings, map_12, map_21);
-    progress.line("automatic initial maps in " + duration(initialization.total_seconds) + ": cycle fixed points " +
-                  percent(initialization.cycle_fixed_fraction) + ", orientation agreement " +
-                  percent(initialization.orientation_agreement) + ", " + initialization_summary(initialization));
-  }
-  else if(repair_step)
-  {
-    progress.line(!compare ? "repairing the tears of the initial maps"
-                  : repair ? "repairing the tears of the initial maps, then comparing them with the automatic maps"
-                           : "comparing the initial maps with the automatic maps");
-    initialization = repair_maps(*s1, *s2, settings, map_12, map_21, repair);
-    progress.line((repair ? "repair in " : "comparison in ") + duration(initialization.total_seconds) + ": " +
-                  initialization_summary(initialization));
-  }
-  // Maps of the automatic initialisation that replaced the given ones (a kept repair pass, or the
-  // automatic maps of --compare-automatic) are refined as automatic maps.
-  const bool automatic_maps = automatic || repaired_maps_are_automatic(initialization);
-  const std::size_t inconsistent_initial = smc::number_of_inconsistent_vertices(map_12, map_21);
-  const double coverage_12_initial = smc::map_coverage(map_12, n2), coverage_21_initial = smc::map_coverage(map_21, n1);
-  smc::Coupled_refinement_result refinement;
-  if(refine)
-  {
-    const smc::Refinement_settings resolved = resolved_refinement(settings, automatic_maps);
-    progress.line("coupled refinement: " + std::to_string(resolved.outer_iterations()) +
-                  " outer iterations at most, rings " + join(resolved.ring_schedule) + ", " +
-                  std::to_string(resolved.number_of_candidates) + " candidates");
-    refinement = refine_maps(*s1, *s2, map_12, map_21, settings, automatic_maps, progress);
-    progress.line("refinement done in " + duration(refinement.total_seconds) + " (" +
-                  smc::to_string(refinement.termination) + ")");
-  }
+  const smc::Matching_result r =
+      match_meshes(m1, m2, given ? &given_12 : nullptr, given ? &given_21 : nullptr, np, map_12, map_21);
   write_vertex_map(out_12, map_12, index_base);
   write_vertex_map(out_21, map_21, index_base);
-  const double total_seconds = total.seconds();
 
   if(!stats.empty())
   {
@@ -222,20 +143,11 @@ int match(int argc, char** argv)
     if(!out) throw smc::IO_error("cannot open " + stats + " for writing");
     Json_writer json(out);
     json.begin_object().value("command", "match").value("index_base", index_base);
-    write_preparation(json, "source", *s1);
-    write_preparation(json, "target", *s2);
-    write_settings(json, "settings", settings, initialization_data, automatic_maps);
-    if(automatic)
-      write_initialization(json, "initialization", initialization);
-    else
-      json.begin_object("initialization").value("map_12", init_12).value("map_21", init_21).end_object();
-    if(repair_step) write_initialization(json, "repair", initialization);
-    json.begin_object("initial_maps")
-        .value("inconsistent_vertices", inconsistent_initial)
-        .value("coverage_12", coverage_12_initial)
-        .value("coverage_21", coverage_21_initial)
-        .end_object();
-    if(refine) write_refinement(json, "refinement", refinement);
+    json.begin_object("source").value("file", files[0]).value("vertices", n1).end_object();
+    json.begin_object("target").value("file", files[1]).value("vertices", n2).end_object();
+    if(given) json.value("init_12", init_12).value("init_21", init_21);
+    write_settings(json, "settings", settings, r.refined_maps);
+    write_result(json, "result", r);
     json.begin_object("final_maps")
         .value("inconsistent_vertices", smc::number_of_inconsistent_vertices(map_12, map_21))
         .value("coverage_12", smc::map_coverage(map_12, n2))
@@ -243,48 +155,23 @@ int match(int argc, char** argv)
         .value("map_12", out_12)
         .value("map_21", out_21)
         .end_object();
-    json.begin_object("timings")
-        .value("loading_seconds", load_seconds)
-        .value("preprocessing_seconds", s1->total_seconds + s2->total_seconds)
-        .value("initialization_seconds", initialization_data ? initialization.total_seconds : 0.0)
-        .value("data_preparation_seconds", refinement.data_preparation_seconds)
-        .value("trws_seconds", refinement.trws_seconds)
-        .value("refinement_seconds", refinement.total_seconds)
-        .value("total_seconds", total_seconds)
-        .end_object();
+    json.value("loading_seconds", load_seconds).value("total_seconds", load_seconds + r.total_seconds);
+    json.value("peak_memory_mib", peak_memory_mib());
     json.end_object().finish();
     if(!out) throw smc::IO_error("error while writing " + stats);
   }
 
   std::cout << "source: " << files[0] << " (" << n1 << " vertices)\n"
             << "target: " << files[1] << " (" << n2 << " vertices)\n";
-  if(automatic)
-    std::cout << "initial maps: automatic (functional maps + ZoomOut) in " << duration(initialization.total_seconds)
-              << "\n";
-  else
-    std::cout << "initial maps: " << init_12 << ", " << init_21
-              << (repair_step ? std::string(repair ? ", repaired" : ", compared") + " in " +
-                                    duration(initialization.total_seconds) + ": " +
-                                    initialization_summary(initialization)
-                              : std::string())
-              << "\n";
-  const std::size_t inconsistent_final = smc::number_of_inconsistent_vertices(map_12, map_21);
-  if(refine)
-    std::cout << "refinement: " << refinement.kept_outer_iterations << " of " << refinement.outer_iterations
-              << " outer iterations kept (" << smc::to_string(refinement.termination) << ")\n";
-  std::cout << "inconsistent vertices (T21(T12(x)) != x, both ways): " << inconsistent_initial;
-  if(refine) std::cout << " -> " << inconsistent_final;
-  std::cout << " of " << (n1 + n2) << "\n"
-            << "coverage of the target by map 1->2: " << percent(coverage_12_initial);
-  if(refine) std::cout << " -> " << percent(smc::map_coverage(map_12, n2));
-  std::cout << "\ntimings: loading " << duration(load_seconds) << ", preprocessing "
-            << duration(s1->total_seconds) << " + " << duration(s2->total_seconds);
-  if(initialization_data)
-    std::cout << (automatic ? ", initialisation " : ", repair ") << duration(initialization.total_seconds);
-  if(refine)
-    std::cout << ", data preparation " << duration(refinement.data_preparation_seconds) << ", TRW-S "
-              << duration(refinement.trws_seconds);
-  std::cout << ", total " << duration(total_seconds) << "\n"
+  for(const std::string& d : r.decisions) std::cout << d << "\n";
+  std::cout << "inconsistent vertices (T21(T12(x)) != x, both ways): " << r.inconsistent_vertices_before << " -> "
+            << r.inconsistent_vertices_after << " of " << (n1 + n2) << "\n"
+            << "timings: loading " << duration(load_seconds);
+  for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
+    if(r.stage_seconds[std::size_t(s)] > 0)
+      std::cout << ", " << smc::to_string(smc::Matching_stage(s)) << " " << duration(r.stage_seconds[std::size_t(s)]);
+  std::cout << ", total " << duration(load_seconds + r.total_seconds) << "; peak memory "
+            << fixed(peak_memory_mib(), 0) << " MiB\n"
             << "wrote " << out_12 << " (" << n1 << " lines) and " << out_21 << " (" << n2 << " lines), "
             << index_base << "-based" << (stats.empty() ? "" : "; statistics in " + stats) << "\n";
   return 0;

@@ -37,14 +37,18 @@ struct Bench_options
 {
   std::string data, pairs, init, out, compare, label;
   int jobs = 1, limit = 0, cache = 0;
-  bool verbose = false, no_refine = false, repair = false, compare_automatic = false;
+  bool verbose = false;
 };
 
-/// A prepared dataset shape with its ground truth.
+/// A prepared dataset shape (the library's Correspondence_shape) with its ground truth.
 struct Bench_shape
 {
-  std::unique_ptr<Prepared_shape> prepared;
+  Mesh mesh;
+  std::unique_ptr<Shape> shape;
+  std::unique_ptr<Evaluator> evaluator;
   Vertex_map vts, sym;  ///< sym empty when the dataset has no .sym.vts
+  double preparation_seconds = 0;
+  std::size_t number_of_vertices() const { return num_vertices(mesh); }
 };
 
 /// Prepared shapes shared by the jobs, at most `capacity` of them kept once unused (least
@@ -109,7 +113,9 @@ struct Map_quality
 struct Direction_result
 {
   std::string source, target;
-  Map_quality initial, refined;
+  /// The initial maps (given, or automatic), the maps that entered the refinement (the automatic
+  /// maps, or the given maps after the repair and the comparison) and the final maps.
+  Map_quality initial, unrefined, refined;
 };
 
 struct Pair_result
@@ -121,29 +127,39 @@ struct Pair_result
   Direction_result direction[2];
   std::size_t inconsistent_before = 0, inconsistent_after = 0;
   int outer_iterations = 0, kept_iterations = 0;
-  int repair_passes = 0;                          ///< tear repair passes kept (automatic maps, or --repair)
+  int repair_passes = 0;                          ///< tear repair passes kept
   double torn_fraction_before = 0, torn_fraction = 0;
-  int distortion_repair_passes = 0;               ///< distortion repair passes kept
-  double sample_distortion_before = 0, sample_distortion = 0;
-  int automatic_maps_kept = -1;                   ///< --compare-automatic: 1 when the automatic maps replaced the given ones
-  double given_maps_distortion = -1, automatic_maps_distortion = -1;  ///< --compare-automatic (-1: not computed)
-  bool refined_as_automatic = false;              ///< automatic maps, or repaired maps of the automatic initialisation
+  int automatic_maps_kept = -1;                   ///< given maps: 1 when the automatic maps replaced them
+  double given_maps_distortion = -1, automatic_maps_distortion = -1;  ///< given maps (-1: not computed)
+  bool refined_as_automatic = false;              ///< the refinement used the defaults for automatic maps
+  double refined_fraction_12 = 1, refined_fraction_21 = 1;  ///< the selection
   std::string termination;
   double preprocessing_seconds = 0, initialization_seconds = 0, data_preparation_seconds = 0, trws_seconds = 0,
-         refinement_seconds = 0, evaluation_seconds = 0;
-  /// The time and the tear repair figures of an initialisation or a repair.
-  void set_initialization(const smc::Automatic_initialization_result& init)
+         refinement_seconds = 0, selection_seconds = 0, evaluation_seconds = 0, match_seconds = 0;
+  void set(const smc::Matching_result& m)
   {
-    initialization_seconds = init.total_seconds;
-    repair_passes = init.repair_passes;
-    torn_fraction_before = init.torn_fraction_before;
-    torn_fraction = init.torn_fraction;
-    distortion_repair_passes = init.distortion_repair_passes;
-    sample_distortion_before = init.sample_distortion_before;
-    sample_distortion = init.sample_distortion;
-    automatic_maps_kept = init.compared_with_automatic_maps ? int(init.automatic_maps_kept) : -1;
-    given_maps_distortion = init.compared_with_automatic_maps ? init.given_maps_distortion : -1;
-    automatic_maps_distortion = init.automatic_maps_computed ? init.automatic_maps_distortion : -1;
+    using smc::Matching_stage;
+    initialization_seconds = m.seconds(Matching_stage::initialization) + m.seconds(Matching_stage::repair) +
+                             m.seconds(Matching_stage::comparison);
+    repair_passes = m.repair_passes;
+    torn_fraction_before = m.initialization.torn_fraction_before;
+    torn_fraction = m.initialization.torn_fraction;
+    automatic_maps_kept = m.compared ? int(m.automatic_maps_kept) : -1;
+    given_maps_distortion = m.compared ? m.given_maps_distortion : -1;
+    automatic_maps_distortion = m.automatic_maps_computed ? m.automatic_maps_distortion : -1;
+    refined_as_automatic = m.refined_maps == smc::Map_origin::automatic;
+    refined_fraction_12 = m.selection.refined_fraction_12;
+    refined_fraction_21 = m.selection.refined_fraction_21;
+    inconsistent_before = m.inconsistent_vertices_before;
+    inconsistent_after = m.inconsistent_vertices_after;
+    outer_iterations = m.refinement.outer_iterations;
+    kept_iterations = m.refinement.kept_outer_iterations;
+    termination = smc::to_string(m.termination);
+    data_preparation_seconds = m.refinement.data_preparation_seconds;
+    trws_seconds = m.refinement.trws_seconds;
+    refinement_seconds = m.seconds(Matching_stage::refinement);
+    selection_seconds = m.seconds(Matching_stage::selection);
+    match_seconds = m.total_seconds;
   }
 };
 
@@ -174,15 +190,15 @@ Map_quality evaluate(const Bench_shape& source, const Bench_shape& target, const
                      const Vertex_map& back)
 {
   Map_quality q;
-  const Evaluator& on_target = target.prepared->evaluator();
+  const Evaluator& on_target = *target.evaluator;
   q.errors = on_target.geodesic_errors(forth, source.vts, target.vts);
   if(!target.sym.empty())
   {
     q.symmetric = on_target.symmetric_geodesic_errors(forth, source.vts, target.vts, target.sym);
     q.has_symmetric = true;
   }
-  q.cycle = source.prepared->evaluator().cycle_consistency(forth, back);
-  q.coverage = smc::map_coverage(forth, target.prepared->number_of_vertices());
+  q.cycle = source.evaluator->cycle_consistency(forth, back);
+  q.coverage = smc::map_coverage(forth, target.number_of_vertices());
   return q;
 }
 
@@ -286,11 +302,11 @@ Run_curves read_run_curves(const std::string& dir)
 
 int run_bench(int argc, char** argv)
 {
-  Settings settings;
+  smc::Matching_settings settings;
   Common_options common;
   Bench_options o;
   Option_parser p("bench", "comap bench --data DIR --out DIR [--pairs FILE] [--init DIR] [options]",
-                  "Runs the coupled refinement on every pair of a benchmark dataset (layout of FAUST_r and TOSCA_r: "
+                  "Runs match_shapes() on every pair of a benchmark dataset (layout of FAUST_r and TOSCA_r: "
                   "DIR/off/NAME.off, DIR/corres/NAME.vts and NAME.sym.vts, a pairs file with two names per line), "
                   "from the initial maps INIT/A_B.map and INIT/B_A.map (1-based), or from automatic initial maps "
                   "without --init. Evaluates both directions against the ground truth and writes OUT/maps/A_B.map "
@@ -313,14 +329,8 @@ int run_bench(int argc, char** argv)
   p.value("--label", "NAME", "name of this run in the plots", "coupled or non-coupled",
           [&](const std::string& v) { o.label = v; });
   p.flag("--verbose", "a progress line for every MRF solve", [&] { o.verbose = true; });
-  p.flag("--no-refine", "evaluate the initial maps alone (the refined columns repeat them)",
-         [&] { o.no_refine = true; });
-  p.flag("--repair", "with --init: repair the tears of the given maps before the refinement (see comap match "
-         "--repair); the repaired maps go to OUT/repaired_maps/", [&] { o.repair = true; });
-  p.flag("--compare-automatic", "with --init (after the repair with --repair): compare the given maps with the "
-         "automatic maps of each pair and keep the less distorted ones (see comap match --compare-automatic)",
-         [&] { o.compare_automatic = settings.initialization.compare_with_automatic_maps = true; });
-  add_algorithm_options(p, settings, true);
+  p.section("Settings");
+  add_settings_options(p, settings);
   add_common_options(p, common);
   bool run = true;
   const std::vector<std::string> extra = p.parse(argc, argv, 2, run);
@@ -328,10 +338,7 @@ int run_bench(int argc, char** argv)
   if(!extra.empty()) throw Usage_error("unexpected argument " + extra.front());
   if(o.data.empty() || o.out.empty()) throw Usage_error("bench needs --data DIR and --out DIR");
   const bool automatic = o.init.empty();
-  if(automatic && o.compare_automatic) throw Usage_error("--compare-automatic needs --init (given maps to compare)");
-  const bool repair_step = o.repair || o.compare_automatic;  // both need the initialisation's data
-  check_settings(settings, automatic || repair_step);
-  if(o.label.empty()) o.label = o.no_refine ? "no" : settings.refinement.use_coupling ? "coupled" : "non-coupled";
+  if(o.label.empty()) o.label = !settings.use_refinement ? "no" : settings.use_coupling ? "coupled" : "non-coupled";
   if(o.pairs.empty()) o.pairs = o.data + "/test_pairs.txt";
   if(!directory_exists(o.data)) throw Input_error("--data: " + o.data + " is not a directory");
   if(!automatic && !directory_exists(o.init)) throw Input_error("--init: " + o.init + " is not a directory");
@@ -357,8 +364,7 @@ int run_bench(int argc, char** argv)
   Run_curves other;
   if(!o.compare.empty()) other = read_run_curves(o.compare);
   make_directories(o.out + "/maps");
-  if(automatic) make_directories(o.out + "/init_maps");
-  if(repair_step && !automatic) make_directories(o.out + "/repaired_maps");
+  make_directories(o.out + "/unrefined_maps");
 
   const Thread_limit limit(common.threads);
   const Progress progress(common.quiet);
@@ -367,26 +373,26 @@ int run_bench(int argc, char** argv)
   const int threads_per_job = std::max(1, threads / jobs);
   const Progress quiet_progress(true);
   const Progress& step_progress = o.verbose ? progress : quiet_progress;
-  progress.line("bench: " + std::to_string(pairs.size()) + " pairs of " + o.data + (automatic ? ", automatic initial maps" : ", initial maps from " + o.init) +
-                ", " + o.label + " refinement, " + std::to_string(jobs) + " job(s) x " + std::to_string(threads_per_job) +
-                " thread(s)");
+  progress.line("bench: " + std::to_string(pairs.size()) + " pairs of " + o.data +
+                (automatic ? ", automatic initial maps" : ", initial maps from " + o.init) + ", " + o.label +
+                " refinement, " + std::to_string(jobs) + " job(s) x " + std::to_string(threads_per_job) + " thread(s)");
 
   Shape_cache cache(o.cache > 0 ? static_cast<std::size_t>(o.cache) : static_cast<std::size_t>(2 * jobs + 2),
                     [&](const std::string& name) {
                       std::shared_ptr<Bench_shape> s(new Bench_shape);
-                      Mesh mesh = read_triangle_mesh(mesh_file(name));
-                      s->prepared = prepare_shape(name, std::move(mesh), settings, !o.no_refine, automatic || repair_step,
-                                                  step_progress);
-                      const std::size_t n = s->prepared->number_of_vertices();
+                      const Stopwatch t;
+                      s->mesh = read_triangle_mesh(mesh_file(name));
+                      s->shape.reset(new Shape(s->mesh, smc::parameters::matching_settings(settings), name));
+                      s->preparation_seconds = t.seconds();
+                      const std::size_t n = s->number_of_vertices();
                       s->vts = read_correspondences(vts_file(name), 1, n);
                       if(file_exists(sym_file(name))) s->sym = read_correspondences(sym_file(name), 1, n);
-                      s->prepared->evaluator();  // built now: later uses are read-only
+                      s->evaluator.reset(new Evaluator(s->mesh));
                       return std::shared_ptr<const Bench_shape>(s);
                     });
 
   std::vector<Pair_result> results(pairs.size());
   std::atomic<std::size_t> next(0), done(0);
-  std::mutex csv_mutex;
   const Stopwatch wall;
   auto process = [&](std::size_t i) {
     Pair_result& r = results[i];
@@ -398,63 +404,34 @@ int run_bench(int argc, char** argv)
       const Shape_cache::Pointer A = cache.get(r.a), B = cache.get(r.b);
       if(A->vts.size() != B->vts.size())
         throw Input_error(vts_file(r.a) + " and " + vts_file(r.b) + " have different numbers of samples");
-      r.preprocessing_seconds = A->prepared->total_seconds + B->prepared->total_seconds;
-      Vertex_map m12, m21;
+      r.preprocessing_seconds = A->preparation_seconds + B->preparation_seconds;
+      Progress_visitor visitor(step_progress, r.a + " - " + r.b + ": ");
+      const auto np = smc::parameters::matching_settings(settings, smc::parameters::visitor(std::ref(visitor)));
+      Vertex_map m12, m21, g12, g21;
+      smc::Matching_result m;
       if(automatic)
-      {
-        r.set_initialization(initialize_maps(*A->prepared, *B->prepared, settings, m12, m21));
-        r.refined_as_automatic = true;
-        write_vertex_map(map_file(o.out + "/init_maps", r.a, r.b), m12, 1);
-        write_vertex_map(map_file(o.out + "/init_maps", r.b, r.a), m21, 1);
-      }
+        m = smc::match_shapes<Concurrency>(*A->shape, *B->shape, m12, m21, np);
       else
       {
-        m12 = read_vertex_map(map_file(o.init, r.a, r.b), 1, A->prepared->number_of_vertices(),
-                              B->prepared->number_of_vertices());
-        m21 = read_vertex_map(map_file(o.init, r.b, r.a), 1, B->prepared->number_of_vertices(),
-                              A->prepared->number_of_vertices());
+        g12 = read_vertex_map(map_file(o.init, r.a, r.b), 1, A->number_of_vertices(), B->number_of_vertices());
+        g21 = read_vertex_map(map_file(o.init, r.b, r.a), 1, B->number_of_vertices(), A->number_of_vertices());
+        m = smc::match_shapes<Concurrency>(*A->shape, *B->shape, m12, m21, smc::parameters::initial_maps(g12, g21, np));
       }
+      r.set(m);
       Stopwatch eval_watch;
       r.direction[0].source = r.direction[1].target = r.a;
       r.direction[0].target = r.direction[1].source = r.b;
-      r.direction[0].initial = evaluate(*A, *B, m12, m21);
-      r.direction[1].initial = evaluate(*B, *A, m21, m12);
+      r.direction[0].unrefined = evaluate(*A, *B, m.unrefined_map_12, m.unrefined_map_21);
+      r.direction[1].unrefined = evaluate(*B, *A, m.unrefined_map_21, m.unrefined_map_12);
+      r.direction[0].initial = automatic ? r.direction[0].unrefined : evaluate(*A, *B, g12, g21);
+      r.direction[1].initial = automatic ? r.direction[1].unrefined : evaluate(*B, *A, g21, g12);
+      r.direction[0].refined = evaluate(*A, *B, m12, m21);
+      r.direction[1].refined = evaluate(*B, *A, m21, m12);
       r.evaluation_seconds = eval_watch.seconds();
-      if(!automatic && repair_step)
-      {
-        const smc::Automatic_initialization_result repaired = repair_maps(*A->prepared, *B->prepared, settings, m12, m21, o.repair);
-        r.set_initialization(repaired);
-        r.refined_as_automatic = repaired_maps_are_automatic(repaired);
-        write_vertex_map(map_file(o.out + "/repaired_maps", r.a, r.b), m12, 1);
-        write_vertex_map(map_file(o.out + "/repaired_maps", r.b, r.a), m21, 1);
-      }
-      smc::Coupled_refinement_result refinement;
-      if(o.no_refine)
-      {
-        r.direction[0].refined = r.direction[0].initial;
-        r.direction[1].refined = r.direction[1].initial;
-        refinement.inconsistent_vertices_before = refinement.inconsistent_vertices_after =
-            smc::number_of_inconsistent_vertices(m12, m21);
-      }
-      else
-      {
-        refinement = refine_maps(*A->prepared, *B->prepared, m12, m21, settings, r.refined_as_automatic, step_progress,
-                                 r.a + " - " + r.b + ": ");
-        eval_watch.reset();
-        r.direction[0].refined = evaluate(*A, *B, m12, m21);
-        r.direction[1].refined = evaluate(*B, *A, m21, m12);
-        r.evaluation_seconds += eval_watch.seconds();
-      }
+      write_vertex_map(map_file(o.out + "/unrefined_maps", r.a, r.b), m.unrefined_map_12, 1);
+      write_vertex_map(map_file(o.out + "/unrefined_maps", r.b, r.a), m.unrefined_map_21, 1);
       write_vertex_map(map_file(o.out + "/maps", r.a, r.b), m12, 1);
       write_vertex_map(map_file(o.out + "/maps", r.b, r.a), m21, 1);
-      r.inconsistent_before = refinement.inconsistent_vertices_before;
-      r.inconsistent_after = refinement.inconsistent_vertices_after;
-      r.outer_iterations = refinement.outer_iterations;
-      r.kept_iterations = refinement.kept_outer_iterations;
-      r.termination = smc::to_string(refinement.termination);
-      r.data_preparation_seconds = refinement.data_preparation_seconds;
-      r.trws_seconds = refinement.trws_seconds;
-      r.refinement_seconds = refinement.total_seconds;
       r.ok = true;
     }
     catch(const std::exception& e)
@@ -464,11 +441,11 @@ int run_bench(int argc, char** argv)
     const std::size_t k = ++done;
     std::string line = "[" + std::to_string(k) + "/" + std::to_string(pairs.size()) + "] " + r.a + " - " + r.b + ": ";
     if(r.ok)
-      line += "error " + fixed(r.direction[0].initial.errors.mean, 4) + " " + fixed(r.direction[1].initial.errors.mean, 4) +
-              " -> " + fixed(r.direction[0].refined.errors.mean, 4) + " " + fixed(r.direction[1].refined.errors.mean, 4) +
-              ", inconsistent " + std::to_string(r.inconsistent_before) + " -> " + std::to_string(r.inconsistent_after) +
-              ", " + duration(r.initialization_seconds + r.refinement_seconds) + " (data " +
-              duration(r.data_preparation_seconds) + ", TRW-S " + duration(r.trws_seconds) + ")";
+      line += "error " + fixed(r.direction[0].unrefined.errors.mean, 4) + " " +
+              fixed(r.direction[1].unrefined.errors.mean, 4) + " -> " + fixed(r.direction[0].refined.errors.mean, 4) +
+              " " + fixed(r.direction[1].refined.errors.mean, 4) + ", inconsistent " +
+              std::to_string(r.inconsistent_before) + " -> " + std::to_string(r.inconsistent_after) + ", refined on " +
+              percent(r.refined_fraction_12) + " / " + percent(r.refined_fraction_21) + ", " + duration(r.match_seconds);
     else
       line += "FAILED: " + r.error;
     progress.line(line);
@@ -497,21 +474,21 @@ int run_bench(int argc, char** argv)
   const double wall_seconds = wall.seconds();
 
   // ---------------------------------------------------------------- outputs
-  Aggregate initial, refined;
+  Aggregate initial, unrefined, refined;
   std::vector<double> pair_seconds, pair_seconds_with_preprocessing;
-  std::size_t failed = 0;
-  double initialization_sum = 0, data_sum = 0, trws_sum = 0, refinement_sum = 0;
+  std::size_t failed = 0, worsened = 0, maps = 0;
+  double initialization_sum = 0, data_sum = 0, trws_sum = 0, refinement_sum = 0, selection_sum = 0;
   {
     std::ofstream csv(o.out + "/pairs.csv");
     if(!csv) throw smc::IO_error("cannot write " + o.out + "/pairs.csv");
-    csv << "pair,direction,source,target,samples,initial_error,refined_error,initial_median,refined_median,"
-           "initial_within_0.025,refined_within_0.025,initial_within_0.05,refined_within_0.05,initial_sym_error,"
-           "refined_sym_error,initial_cycle_error,refined_cycle_error,initial_fixed_points,refined_fixed_points,"
-           "initial_coverage,refined_coverage,inconsistent_before,inconsistent_after,outer_iterations,"
-           "kept_iterations,termination,preprocessing_seconds,initialization_seconds,data_preparation_seconds,"
-           "trws_seconds,refinement_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
-           "distortion_repair_passes,sample_distortion_before,sample_distortion,automatic_maps_kept,"
-           "refined_as_automatic,given_maps_distortion,automatic_maps_distortion\n";
+    csv << "pair,direction,source,target,samples,initial_error,unrefined_error,refined_error,initial_median,"
+           "refined_median,initial_within_0.025,unrefined_within_0.025,refined_within_0.025,initial_within_0.05,"
+           "refined_within_0.05,initial_sym_error,refined_sym_error,initial_cycle_error,unrefined_cycle_error,"
+           "refined_cycle_error,initial_fixed_points,refined_fixed_points,initial_coverage,refined_coverage,"
+           "inconsistent_before,inconsistent_after,refined_fraction,outer_iterations,kept_iterations,termination,"
+           "preprocessing_seconds,initialization_seconds,data_preparation_seconds,trws_seconds,refinement_seconds,"
+           "selection_seconds,match_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
+           "automatic_maps_kept,refined_as_automatic,given_maps_distortion,automatic_maps_distortion\n";
     for(const Pair_result& r : results)
     {
       if(!r.ok)
@@ -519,41 +496,49 @@ int run_bench(int argc, char** argv)
         ++failed;
         continue;
       }
-      pair_seconds.push_back(r.initialization_seconds + r.refinement_seconds);
-      pair_seconds_with_preprocessing.push_back(r.preprocessing_seconds + r.initialization_seconds + r.refinement_seconds);
+      pair_seconds.push_back(r.match_seconds);
+      pair_seconds_with_preprocessing.push_back(r.preprocessing_seconds + r.match_seconds);
       initialization_sum += r.initialization_seconds;
       data_sum += r.data_preparation_seconds;
       trws_sum += r.trws_seconds;
       refinement_sum += r.refinement_seconds;
+      selection_sum += r.selection_seconds;
       for(int d = 0; d < 2; ++d)
       {
         const Direction_result& x = r.direction[d];
         initial.add(x.initial);
+        unrefined.add(x.unrefined);
         refined.add(x.refined);
+        ++maps;
+        worsened += x.refined.errors.mean > x.unrefined.errors.mean + 0.002;
         auto sym = [](const Map_quality& q) { return q.has_symmetric ? shortest(q.symmetric.mean) : std::string(""); };
-        auto optional_value = [](double x) { return x < 0 ? std::string("") : shortest(x); };
+        auto optional_value = [](double v) { return v < 0 ? std::string("") : shortest(v); };
         csv << r.a << "_" << r.b << "," << (d == 0 ? "12" : "21") << "," << x.source << "," << x.target << ","
             << x.initial.errors.errors.size() << "," << shortest(x.initial.errors.mean) << ","
-            << shortest(x.refined.errors.mean) << "," << shortest(x.initial.errors.median) << ","
-            << shortest(x.refined.errors.median) << "," << shortest(x.initial.errors.fraction_below(0.025)) << ","
+            << shortest(x.unrefined.errors.mean) << "," << shortest(x.refined.errors.mean) << ","
+            << shortest(x.initial.errors.median) << "," << shortest(x.refined.errors.median) << ","
+            << shortest(x.initial.errors.fraction_below(0.025)) << ","
+            << shortest(x.unrefined.errors.fraction_below(0.025)) << ","
             << shortest(x.refined.errors.fraction_below(0.025)) << "," << shortest(x.initial.errors.fraction_below(0.05))
             << "," << shortest(x.refined.errors.fraction_below(0.05)) << "," << sym(x.initial) << "," << sym(x.refined)
-            << "," << shortest(x.initial.cycle.distances.mean) << "," << shortest(x.refined.cycle.distances.mean) << ","
-            << shortest(x.initial.cycle.fixed_point_fraction) << "," << shortest(x.refined.cycle.fixed_point_fraction)
-            << "," << shortest(x.initial.coverage) << "," << shortest(x.refined.coverage) << ","
-            << r.inconsistent_before << "," << r.inconsistent_after << "," << r.outer_iterations << ","
+            << "," << shortest(x.initial.cycle.distances.mean) << "," << shortest(x.unrefined.cycle.distances.mean)
+            << "," << shortest(x.refined.cycle.distances.mean) << "," << shortest(x.initial.cycle.fixed_point_fraction)
+            << "," << shortest(x.refined.cycle.fixed_point_fraction) << "," << shortest(x.initial.coverage) << ","
+            << shortest(x.refined.coverage) << "," << r.inconsistent_before << "," << r.inconsistent_after << ","
+            << shortest(d == 0 ? r.refined_fraction_12 : r.refined_fraction_21) << "," << r.outer_iterations << ","
             << r.kept_iterations << "," << r.termination << "," << shortest(r.preprocessing_seconds) << ","
             << shortest(r.initialization_seconds) << "," << shortest(r.data_preparation_seconds) << ","
             << shortest(r.trws_seconds) << "," << shortest(r.refinement_seconds) << ","
+            << shortest(r.selection_seconds) << "," << shortest(r.match_seconds) << ","
             << shortest(r.evaluation_seconds) << "," << r.repair_passes << "," << shortest(r.torn_fraction_before)
-            << "," << shortest(r.torn_fraction) << "," << r.distortion_repair_passes << ","
-            << shortest(r.sample_distortion_before) << "," << shortest(r.sample_distortion) << ","
+            << "," << shortest(r.torn_fraction) << ","
             << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << ","
             << int(r.refined_as_automatic) << "," << optional_value(r.given_maps_distortion) << ","
             << optional_value(r.automatic_maps_distortion) << "\n";
       }
     }
   }
+  unrefined.finish();
   initial.finish();
   refined.finish();
   const std::size_t succeeded = results.size() - failed;
@@ -640,8 +625,10 @@ int run_bench(int argc, char** argv)
         .value("pairs", succeeded)
         .value("maps", 2 * succeeded)
         .value("failed_pairs", failed);
-    write_settings(json, "settings", settings, automatic || repair_step, automatic);
+    write_settings(json, "settings", settings, automatic ? smc::Map_origin::automatic : smc::Map_origin::given);
     write_aggregate(json, "initial", initial);
+    write_aggregate(json, "unrefined", unrefined);
+    json.value("fraction_worsened_by_more_than_0.002", maps > 0 ? double(worsened) / double(maps) : 0.0);
     write_aggregate(json, "refined", refined);
     const double n = succeeded > 0 ? static_cast<double>(succeeded) : 1.0;
     json.begin_object("timings")
@@ -651,7 +638,9 @@ int run_bench(int argc, char** argv)
         .value("mean_data_preparation_seconds", data_sum / n)
         .value("mean_trws_seconds", trws_sum / n)
         .value("mean_refinement_seconds", refinement_sum / n)
+        .value("mean_selection_seconds", selection_sum / n)
         .value("wall_seconds", wall_seconds)
+        .value("peak_memory_mib", peak_memory_mib())
         .value("jobs", jobs)
         .value("threads_per_job", threads_per_job)
         .end_object();
@@ -662,7 +651,10 @@ int run_bench(int argc, char** argv)
             << (automatic ? std::string("automatic") : o.init) << ", " << o.label << " refinement\n"
             << "           mean error  within 0.025  within 0.05"
             << (initial.has_symmetric ? "  sym. error" : "") << "  cycle error  fixed points\n";
-  for(const auto& row : {std::make_pair("initial", &initial), std::make_pair("refined", &refined)})
+  std::vector<std::pair<const char*, const Aggregate*> > rows{{"initial", &initial}};
+  if(!automatic) rows.emplace_back("unrefined", &unrefined);
+  rows.emplace_back("final", &refined);
+  for(const auto& row : rows)
   {
     const Aggregate& g = *row.second;
     char line[200];
@@ -673,11 +665,14 @@ int run_bench(int argc, char** argv)
     std::snprintf(line, sizeof(line), "  %11.4f  %12s\n", g.cycle, percent(g.fixed_points).c_str());
     std::cout << line;
   }
-  std::cout << "median time per pair: " << duration(median(pair_seconds)) << " (initialisation + refinement), "
-            << duration(median(pair_seconds_with_preprocessing)) << " with the preprocessing of both shapes; wall time "
-            << duration(wall_seconds) << "\n"
+  std::cout << "maps whose final error exceeds the unrefined maps' error by more than 0.002: " << worsened << " of "
+            << maps << " (" << percent(maps > 0 ? double(worsened) / double(maps) : 0.0) << ")\n"
+            << "median time per pair: " << duration(median(pair_seconds)) << " (match_shapes() on prepared shapes), "
+            << duration(median(pair_seconds_with_preprocessing)) << " with the preparation of both shapes; wall time "
+            << duration(wall_seconds) << "; peak memory " << fixed(peak_memory_mib(), 0) << " MiB (the whole run: "
+            << jobs << " pair(s) at once and the cache of prepared shapes)\n"
             << "outputs: " << o.out << "/pairs.csv, summary.json, curves.csv, cumulative_error.svg, "
-            << "cycle_consistency.svg, per_pair_error.svg, maps/" << (automatic ? ", init_maps/" : "") << "\n";
+            << "cycle_consistency.svg, per_pair_error.svg, maps/, unrefined_maps/\n";
   if(failed > 0)
     throw Input_error(std::to_string(failed) + " of " + std::to_string(results.size()) + " pairs failed (see " + o.out +
                       "/failures.txt); first: " +

@@ -37,6 +37,19 @@ typedef CGAL::Sequential_tag Concurrency;
 constexpr bool has_tbb = false;
 #endif
 
+/// The process's peak resident set size in MiB (VmHWM of /proc/self/status; 0 where unknown).
+inline double peak_memory_mib()
+{
+  FILE* f = std::fopen("/proc/self/status", "r");
+  if(!f) return 0;
+  char line[256];
+  double kib = 0;
+  while(std::fgets(line, sizeof(line), f))
+    if(std::strncmp(line, "VmHWM:", 6) == 0) kib = std::atof(line + 6);
+  std::fclose(f);
+  return kib / 1024.0;
+}
+
 /// A bad command line (unknown option, missing or malformed value): exit code 2.
 class Usage_error : public std::runtime_error
 {

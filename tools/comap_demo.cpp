@@ -197,17 +197,17 @@ struct Quality
   double fixed_points() const { return 0.5 * (c1.fixed_point_fraction + c2.fixed_point_fraction); }
 };
 
-Quality evaluate(const Prepared_shape& a, const Prepared_shape& b, const Vertex_map& m12, const Vertex_map& m21,
+Quality evaluate(const Evaluator& a, const Evaluator& b, const Vertex_map& m12, const Vertex_map& m21,
                  const Vertex_map& gt12, const Vertex_map& gt21)
 {
-  Vertex_map all_a(a.number_of_vertices()), all_b(b.number_of_vertices());
+  Vertex_map all_a(m12.size()), all_b(m21.size());
   for(std::size_t i = 0; i < all_a.size(); ++i) all_a[i] = i;
   for(std::size_t i = 0; i < all_b.size(); ++i) all_b[i] = i;
   Quality q;
-  q.e12 = b.evaluator().geodesic_errors(m12, all_a, gt12);
-  q.e21 = a.evaluator().geodesic_errors(m21, all_b, gt21);
-  q.c1 = a.evaluator().cycle_consistency(m12, m21);
-  q.c2 = b.evaluator().cycle_consistency(m21, m12);
+  q.e12 = b.geodesic_errors(m12, all_a, gt12);
+  q.e21 = a.geodesic_errors(m21, all_b, gt21);
+  q.c1 = a.cycle_consistency(m12, m21);
+  q.c2 = b.cycle_consistency(m21, m12);
   q.inconsistent = smc::number_of_inconsistent_vertices(m12, m21);
   return q;
 }
@@ -223,7 +223,7 @@ std::vector<double> mean_curve(const std::vector<double>& a, const std::vector<d
 
 int run_demo(int argc, char** argv)
 {
-  Settings settings;
+  smc::Matching_settings settings;
   Common_options common;
   std::string out = "comap_demo";
   bool generated = false;
@@ -235,13 +235,13 @@ int run_demo(int argc, char** argv)
   p.section("Demo");
   p.value("--out", "DIR", "output directory (created)", out, [&](const std::string& v) { out = v; });
   p.flag("--generated", "use the generated capsule pair even when libcgal-demo is installed", [&] { generated = true; });
-  add_algorithm_options(p, settings, true);
+  p.section("Settings");
+  add_settings_options(p, settings);
   add_common_options(p, common);
   bool run = true;
   const std::vector<std::string> extra = p.parse(argc, argv, 2, run);
   if(!run) return 0;
   if(!extra.empty()) throw Usage_error("unexpected argument " + extra.front());
-  check_settings(settings, true);
   make_directories(out);
   const Thread_limit limit(common.threads);
   const Progress progress(common.quiet);
@@ -303,27 +303,27 @@ int run_demo(int argc, char** argv)
                 " vertices)");
 
   // ------------------------------------------------------------ the pipeline
-  const std::unique_ptr<Prepared_shape> a =
-      prepare_shape(source_name, Mesh(source), settings, true, true, progress);
-  const std::unique_ptr<Prepared_shape> b =
-      prepare_shape(target_name, Mesh(target), settings, true, true, progress);
+  Progress_visitor visitor(progress);
   Vertex_map m12, m21;
-  progress.line("computing automatic initial maps (functional maps + ZoomOut)");
-  const smc::Automatic_initialization_result init = initialize_maps(*a, *b, settings, m12, m21);
-  progress.line("automatic initial maps in " + duration(init.total_seconds));
-  write_vertex_map(out + "/initial_12.map", m12, 1);
-  write_vertex_map(out + "/initial_21.map", m21, 1);
-  const Quality before = evaluate(*a, *b, m12, m21, gt12, gt21);
-  const Vertex_map initial12 = m12;
-  const smc::Coupled_refinement_result refinement = refine_maps(*a, *b, m12, m21, settings, true, progress);
-  write_vertex_map(out + "/refined_12.map", m12, 1);
-  write_vertex_map(out + "/refined_21.map", m21, 1);
-  const Quality after = evaluate(*a, *b, m12, m21, gt12, gt21);
+  // The meshes as written (the files round their coordinates): the maps are those of
+  // `comap match` on the two files.
+  Mesh a = read_triangle_mesh(out + "/" + source_name), b = read_triangle_mesh(out + "/" + target_name);
+  const smc::Matching_result r = match_meshes(
+      a, b, nullptr, nullptr, smc::parameters::matching_settings(settings, smc::parameters::visitor(std::ref(visitor))),
+      m12, m21);
+  const Vertex_map& initial12 = r.unrefined_map_12;
+  write_vertex_map(out + "/initial_12.map", r.unrefined_map_12, 1);
+  write_vertex_map(out + "/initial_21.map", r.unrefined_map_21, 1);
+  write_vertex_map(out + "/final_12.map", m12, 1);
+  write_vertex_map(out + "/final_21.map", m21, 1);
+  const Evaluator on_source(source), on_target(target);
+  const Quality before = evaluate(on_source, on_target, r.unrefined_map_12, r.unrefined_map_21, gt12, gt21);
+  const Quality after = evaluate(on_source, on_target, m12, m21, gt12, gt21);
 
   // ------------------------------------------------------------ pictures
   const std::vector<Color> colors = coordinate_colors(target);
   write_colored_ply(out + "/target_colors.ply", target, colors);
-  write_colored_ply(out + "/source_refined.ply", source, pull_colors(colors, m12));
+  write_colored_ply(out + "/source_final.ply", source, pull_colors(colors, m12));
   write_colored_ply(out + "/source_initial.ply", source, pull_colors(colors, initial12));
   write_colored_ply(out + "/source_ground_truth.ply", source, pull_colors(colors, gt12));
   Plot errors;
@@ -333,7 +333,7 @@ int run_demo(int argc, char** argv)
   errors.x_max = before.e12.thresholds.back();
   errors.series.push_back({"automatic initial maps", before.e12.thresholds, mean_curve(before.e12.cumulative, before.e21.cumulative),
                            series_color(6), true, false});
-  errors.series.push_back({"coupled refinement", after.e12.thresholds, mean_curve(after.e12.cumulative, after.e21.cumulative),
+  errors.series.push_back({"final maps", after.e12.thresholds, mean_curve(after.e12.cumulative, after.e21.cumulative),
                            series_color(0), false, false});
   write_svg(out + "/cumulative_error.svg", errors);
   Plot cycle = errors;
@@ -348,12 +348,9 @@ int run_demo(int argc, char** argv)
     Json_writer json(s);
     json.begin_object().value("source", source_name).value("target", target_name);
     json.value("mean_edge_distortion", distortion.first).value("maximum_edge_distortion", distortion.second);
-    write_settings(json, "settings", settings, true, true);
-    write_preparation(json, "source_preparation", *a);
-    write_preparation(json, "target_preparation", *b);
-    write_initialization(json, "initialization", init);
-    write_refinement(json, "refinement", refinement);
-    for(const auto& q : {std::make_pair("initial", &before), std::make_pair("refined", &after)})
+    write_settings(json, "settings", settings, smc::Map_origin::automatic);
+    write_result(json, "result", r);
+    for(const auto& q : {std::make_pair("automatic", &before), std::make_pair("final", &after)})
     {
       json.begin_object(q.first);
       write_error_statistics(json, "errors_12", q.second->e12, true);
@@ -366,13 +363,13 @@ int run_demo(int argc, char** argv)
     json.value("total_seconds", total_seconds).end_object().finish();
   }
 
-  const std::size_t n = a->number_of_vertices() + b->number_of_vertices();
+  const std::size_t n = num_vertices(source) + num_vertices(target);
   std::cout << "comap demo: " << source_description << ", " << num_vertices(source) << " vertices, and a second pose of it\n"
             << "(moved near-isometrically, edge lengths changed by " << percent(distortion.first)
             << " on average, then remeshed: " << num_vertices(target) << " vertices); ground truth from the construction.\n"
             << "Errors: geodesic distance to the true match / sqrt(area), both directions, all vertices.\n\n"
             << "                          mean error  within 0.025  within 0.05  fixed points  inconsistent\n";
-  for(const auto& row : {std::make_pair("automatic initial maps", &before), std::make_pair("coupled refinement", &after)})
+  for(const auto& row : {std::make_pair("automatic initial maps", &before), std::make_pair("final maps", &after)})
   {
     char line[200];
     std::snprintf(line, sizeof(line), "%-24s  %10.4f  %12s  %11s  %12s  %6zu of %zu\n", row.first, row.second->mean(),
@@ -380,20 +377,20 @@ int run_demo(int argc, char** argv)
                   percent(row.second->fixed_points()).c_str(), row.second->inconsistent, n);
     std::cout << line;
   }
-  std::cout << "\ntimings: preprocessing " << duration(a->total_seconds) << " + " << duration(b->total_seconds)
-            << ", automatic initialisation " << duration(init.total_seconds) << ", refinement "
-            << duration(refinement.total_seconds) << " (" << refinement.kept_outer_iterations << " of "
-            << refinement.outer_iterations << " outer iterations kept; data " << duration(refinement.data_preparation_seconds)
-            << ", TRW-S " << duration(refinement.trws_seconds) << "); total " << duration(total_seconds) << "\n";
-  if(refinement.kept_outer_iterations == 0)
-    std::cout << "note: the refinement returned the automatic maps unchanged: none of its iterations made the maps more\n"
-                 "cycle-consistent than they were (the library keeps the most consistent maps, paper Eq. 4).\n";
+  std::cout << "\n";
+  for(const std::string& d : r.decisions) std::cout << d << "\n";
+  std::cout << "\ntimings:";
+  for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
+    if(r.stage_seconds[std::size_t(s)] > 0)
+      std::cout << (s == 0 ? " " : ", ") << smc::to_string(smc::Matching_stage(s)) << " "
+                << duration(r.stage_seconds[std::size_t(s)]);
+  std::cout << "; match_shapes() " << duration(r.total_seconds) << ", total " << duration(total_seconds) << "\n";
   std::cout << "\n"
             << "outputs in " << out << "/:\n"
             << "  " << source_name << ", " << target_name << "   the two meshes\n"
-            << "  refined_12.map, refined_21.map   the refined maps (1-based; also initial_*.map, ground_truth_*.map)\n"
+            << "  final_12.map, final_21.map       the maps (1-based; also initial_*.map, ground_truth_*.map)\n"
             << "  target_colors.ply                the second pose coloured by position\n"
-            << "  source_refined.ply               the source coloured through the refined map (compare with\n"
+            << "  source_final.ply                 the source coloured through the final map (compare with\n"
             << "                                   source_initial.ply and source_ground_truth.ply in MeshLab)\n"
             << "  cumulative_error.svg, cycle_consistency.svg, summary.json\n";
   return 0;

@@ -46,6 +46,8 @@ public:
     for(std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
     return raw(key, s + "]");
   }
+  /// A value already written as JSON text.
+  Json_writer& raw_value(const std::string& key, const std::string& json_text) { return raw(key, json_text); }
   /// An array element (inside begin_array()).
   template <typename T>
   Json_writer& element(const T& x)

@@ -148,6 +148,7 @@ void Option_parser::print_help(std::ostream& out) const
     }
     out << "\n";
   }
+  if(!epilogue_.empty()) out << "\n" << epilogue_;
 }
 
 int parse_int(const std::string& option, const std::string& text)

@@ -43,6 +43,17 @@ public:
     entries_.push_back({name, metavar, help, default_text, false, true, {}, std::move(action)});
   }
 
+  /// Text printed after the options in --help.
+  void epilogue(const std::string& text) { epilogue_ = text; }
+
+  /// The number of options (not counting sections).
+  std::size_t number_of_options() const
+  {
+    std::size_t n = 0;
+    for(const Entry& e : entries_) n += !e.is_section;
+    return n;
+  }
+
   /// Parses argv[first, argc); returns the positional arguments. Returns false in `run` when
   /// --help was given (the help is then printed on stdout).
   std::vector<std::string> parse(int argc, char** argv, int first, bool& run) const;
@@ -58,7 +69,7 @@ private:
     std::function<void()> on_flag;
     std::function<void(const std::string&)> on_value;
   };
-  std::string command_, usage_, description_;
+  std::string command_, usage_, description_, epilogue_;
   std::vector<Entry> entries_;
 };
 

@@ -2,255 +2,122 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 
 #include "comap_pipeline.h"
-#include "comap_parameters.h"
+
+#include <fstream>
+#include <sstream>
 
 namespace comap {
 
-const Evaluator& Prepared_shape::evaluator() const
-{
-  if(!evaluator_) evaluator_.reset(new Evaluator(indexed_mesh()));
-  return *evaluator_;
-}
-
-std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh, const Settings& settings,
-                                              bool for_refinement, bool for_initialization, const Progress& progress)
-{
-  const Stopwatch watch;
-  std::unique_ptr<Prepared_shape> p(new Prepared_shape);
-  p->name = name;
-  p->mesh = std::move(mesh);
-  const int needed =
-      for_initialization ? smc::internal::initialization_number_of_eigenpairs(settings.initialization) : 0;
-  // The initialisation needs `needed` eigenpairs on the intrinsic Delaunay triangulation (as in
-  // automatic_initial_maps()). When the refinement needs no more on the same operator, one
-  // eigensolve serves both: the initialisation's spectrum first, then the refinement's shape
-  // takes its leading eigenpairs (precomputed_spectrum).
-  const bool shared = for_refinement && for_initialization && settings.shape.use_intrinsic_delaunay &&
-                      settings.shape.number_of_eigenpairs <= needed;
-  double initialization_spectrum_seconds = 0;
-  if(!for_refinement || shared)
-  {
-    const Stopwatch t;
-    smc::internal::Mesh_requirements requirements;
-    requirements.allow_several_components = false;
-    p->own_mesh_.reset(new smc::internal::Indexed_mesh(
-        smc::internal::make_indexed_mesh(p->mesh, smc::parameters::default_values(), requirements, name)));
-    p->times.mesh = t.seconds();
-  }
-  if(for_initialization && static_cast<int>(p->number_of_vertices()) <= needed)
-    throw smc::Invalid_mesh_error(name + " has " + std::to_string(p->number_of_vertices()) +
-                                  " vertices, too few for the automatic initialisation's basis of " +
-                                  std::to_string(needed) + " eigenfunctions (lower --init-basis)");
-  if(shared)
-  {
-    const Stopwatch t;
-    p->own_spectrum_.reset(
-        new smc::Laplace_beltrami_spectrum(*p->own_mesh_, smc::parameters::number_of_eigenpairs(needed)));
-    initialization_spectrum_seconds = t.seconds();
-    p->shape.reset(new Shape(p->mesh,
-                             smc::parameters::precomputed_spectrum(
-                                 p->own_spectrum_,  // shared with the shape, not copied
-                                 shape_parameters(settings.shape, settings.shape.number_of_eigenpairs)),
-                             name));
-    p->times = p->shape->preprocessing_times();
-    p->spectrum_from_initialization = true;
-    p->own_mesh_.reset();      // the shape's flat copy is the same
-    p->own_spectrum_.reset();  // and the shape keeps the whole spectrum
-  }
-  else if(for_refinement)
-  {
-    p->shape.reset(new Shape(p->mesh, shape_parameters(settings.shape, settings.shape.number_of_eigenpairs), name));
-    p->times = p->shape->preprocessing_times();
-  }
-  if(for_initialization)
-  {
-    const Stopwatch t;
-    if(!p->own_spectrum_ && (!p->shape || p->shape->data().largest_spectrum().number_of_eigenpairs() != needed ||
-                             !p->shape->data().largest_spectrum().uses_intrinsic_delaunay()))
-      p->own_spectrum_.reset(
-          new smc::Laplace_beltrami_spectrum(p->indexed_mesh(), smc::parameters::number_of_eigenpairs(needed)));
-    p->initialization_descriptors = smc::internal::initialization_descriptors<Concurrency>(
-        p->indexed_mesh(), p->initialization_spectrum(), settings.initialization);
-    p->initialization_seconds = initialization_spectrum_seconds + t.seconds();
-  }
-  p->total_seconds = watch.seconds();
-  progress.line("prepared " + name + " (" + std::to_string(p->number_of_vertices()) + " vertices) in " +
-                duration(p->total_seconds) + ": " + preparation_summary(*p));
-  return p;
-}
-
-std::string preparation_summary(const Prepared_shape& s)
-{
-  std::string out;
-  if(s.shape)
-    out = "spectrum (" + std::to_string(s.shape->spectrum().number_of_eigenpairs()) +
-          (s.spectrum_from_initialization ? " eigenpairs, the initialisation's first) " : " eigenpairs) ") +
-          duration(s.times.spectrum) + ", descriptor stack " + duration(s.times.descriptors) +
-          ", geodesic distances " + duration(s.times.distances);
-  if(s.initialization_descriptors.size() > 0)
-    out += std::string(out.empty() ? "" : ", ") + "initialisation " +
-           (s.shape && &s.initialization_spectrum() == &s.shape->data().largest_spectrum()
-                ? std::string("descriptors ")
-                : "spectrum (" + std::to_string(s.initialization_spectrum().number_of_eigenpairs()) +
-                      " eigenpairs) and descriptors ") +
-           duration(s.initialization_seconds);
-  return out;
-}
-
 namespace {
 
-smc::internal::Initialization_shape initialization_shape(const Prepared_shape& s)
+const char* stage_title(smc::Matching_stage s)
 {
-  if(s.initialization_descriptors.size() == 0)
-    throw std::logic_error("the shape " + s.name + " was not prepared for the initialisation");
-  smc::internal::Initialization_shape out;
-  out.mesh = &s.indexed_mesh();
-  out.spectrum = &s.initialization_spectrum();
-  out.descriptors = &s.initialization_descriptors;
-  return out;
+  switch(s)
+  {
+  case smc::Matching_stage::validation: return "checking the inputs";
+  case smc::Matching_stage::preparation: return "preparing the shapes (spectra, descriptors, geodesic distances)";
+  case smc::Matching_stage::initialization: return "computing automatic initial maps (functional maps + ZoomOut)";
+  case smc::Matching_stage::repair: return "repairing the tears of the given maps";
+  case smc::Matching_stage::comparison: return "comparing the given maps with the automatic maps";
+  case smc::Matching_stage::refinement: return "coupled refinement";
+  case smc::Matching_stage::selection: return "selecting where the refined maps replace their input";
+  }
+  return "";
 }
 
 } // namespace
 
-smc::Automatic_initialization_result initialize_maps(const Prepared_shape& a, const Prepared_shape& b,
-                                                     const Settings& settings, Vertex_map& map_12, Vertex_map& map_21)
+bool Progress_visitor::stage_begun(smc::Matching_stage s)
 {
-  return smc::internal::automatic_initial_maps<Concurrency>(initialization_shape(a), initialization_shape(b),
-                                                            settings.initialization, map_12, map_21);
+  if(s != smc::Matching_stage::validation) progress_->line(label_ + stage_title(s));
+  last_line_ = progress_->elapsed();
+  return true;
 }
 
-smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const Prepared_shape& b,
-                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21,
-                                                 bool repair_tears)
+bool Progress_visitor::progress(smc::Matching_stage s, double fraction)
 {
-  return smc::internal::repair_given_maps<Concurrency>(initialization_shape(a), initialization_shape(b),
-                                                       settings.initialization, map_12, map_21, repair_tears);
+  const double now = progress_->elapsed();
+  if(now - last_line_ < 2.0) return true;
+  last_line_ = now;
+  progress_->line(label_ + "  " + smc::to_string(s) + " " + percent(fraction));
+  return true;
 }
 
-bool repaired_maps_are_automatic(const smc::Automatic_initialization_result& r)
+bool Progress_visitor::stage_ended(smc::Matching_stage s, double seconds)
 {
-  return r.automatic_maps_kept || r.repair_passes > 0 || r.distortion_repair_passes > 0;
+  if(s != smc::Matching_stage::validation) progress_->line(label_ + smc::to_string(s) + " done in " + duration(seconds));
+  return true;
 }
 
-std::string initialization_summary(const smc::Automatic_initialization_result& r)
+bool Progress_visitor::refinement_step(const smc::Refinement_step& s)
 {
-  if(r.compared_with_automatic_maps && !r.automatic_maps_computed)
-    return "the given maps are kept: sample distortion " + fixed(r.given_maps_distortion, 4) +
-           ", within the comparison threshold (no automatic maps computed)";
-  if(r.compared_with_automatic_maps)
-  {
-    const std::string distortions = "sample distortion " + fixed(r.automatic_maps_distortion, 4) +
-                                    " (automatic) against " + fixed(r.given_maps_distortion, 4) + " (given)";
-    if(r.automatic_maps_kept) return "the automatic maps replace the given ones: " + distortions;
-    return "the given maps are kept: " + distortions;
-  }
-  return "torn fraction " + percent(r.torn_fraction_before) +
-         (r.repair_passes > 0 ? " -> " + percent(r.torn_fraction) + " after " + std::to_string(r.repair_passes) +
-                                    " repair pass(es)"
-                              : std::string(" (kept)")) +
-         ", sample distortion " + fixed(r.sample_distortion_before, 4) +
-         (r.distortion_repair_passes > 0 ? " -> " + fixed(r.sample_distortion, 4) + " after " +
-                                               std::to_string(r.distortion_repair_passes) + " distortion repair pass(es)"
-                                         : std::string(" (kept)"));
+  if(!steps_) return true;
+  progress_->line(label_ + "  refinement " + std::to_string(s.outer_iteration + 1) +
+                  (s.direction == 0 ? ", map 1->2, " : ", map 2->1, ") + std::to_string(s.rings) +
+                  (s.rings == 1 ? " ring" : " rings") + ": energy " + significant(s.energy) + " (bound " +
+                  significant(s.lower_bound) + ", " + std::to_string(s.trws_iterations) + " TRW-S iterations), " +
+                  std::to_string(s.changed_vertices) + " matches changed, " + std::to_string(s.inconsistent_vertices) +
+                  " inconsistent; data " + duration(s.data_preparation_seconds) + ", TRW-S " +
+                  duration(s.trws_seconds));
+  return true;
 }
 
-namespace {
-
-/// Prints one line per MRF solve.
-struct Progress_visitor : smc::Default_refinement_visitor
+void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r)
 {
-  const Progress* progress = nullptr;
-  std::string label;
-  int outer_iterations = 0;
-  bool step(const smc::Refinement_step& s)
-  {
-    progress->line(label + "refinement " + std::to_string(s.outer_iteration + 1) + "/" +
-                   std::to_string(outer_iterations) + (s.direction == 0 ? ", map 1->2" : ", map 2->1") + ", " +
-                   std::to_string(s.rings) + (s.rings == 1 ? " ring" : " rings") + ": energy " +
-                   significant(s.energy) + " (bound " + significant(s.lower_bound) + ", " +
-                   std::to_string(s.trws_iterations) + " TRW-S iterations), " + std::to_string(s.changed_vertices) +
-                   " matches changed, " + std::to_string(s.inconsistent_vertices) + " inconsistent; data " +
-                   duration(s.data_preparation_seconds) + ", TRW-S " + duration(s.trws_seconds));
-    return true;
-  }
-};
-
-} // namespace
-
-smc::Coupled_refinement_result refine_maps(const Prepared_shape& a, const Prepared_shape& b, Vertex_map& map_12,
-                                           Vertex_map& map_21, const Settings& settings, bool automatic_input,
-                                           const Progress& progress, const std::string& label)
-{
-  if(!a.shape || !b.shape) throw std::logic_error("refine_maps: the shapes were not prepared for the refinement");
-  Progress_visitor visitor;
-  visitor.progress = &progress;
-  visitor.label = label;
-  // Automatic choices: keep the input maps when they are given, stop early and use the short ring
-  // schedule when they are automatic.
-  const smc::Refinement_settings r = resolved_refinement(settings, automatic_input);
-  visitor.outer_iterations = r.outer_iterations();
-  return smc::refine_coupled_maps<Concurrency>(*a.shape, *b.shape, map_12, map_21, refinement_parameters(r, visitor));
-}
-
-void write_preparation(Json_writer& json, const std::string& key, const Prepared_shape& s)
-{
+  auto origin = [](smc::Map_origin o) { return o == smc::Map_origin::automatic ? "automatic" : "given"; };
   json.begin_object(key)
-      .value("name", s.name)
-      .value("vertices", s.number_of_vertices())
-      .value("faces", static_cast<std::size_t>(num_faces(s.mesh)))
-      .value("eigenpairs", s.shape ? s.shape->spectrum().number_of_eigenpairs() : 0)
-      .value("initialization_eigenpairs",
-             s.initialization_descriptors.size() > 0 ? s.initialization_spectrum().number_of_eigenpairs() : 0)
-      .value("mesh_seconds", s.times.mesh)
-      .value("spectrum_seconds", s.times.spectrum)
-      .value("descriptor_seconds", s.times.descriptors)
-      .value("distance_seconds", s.times.distances)
-      .value("initialization_seconds", s.initialization_seconds)
-      .value("total_seconds", s.total_seconds)
-      .value("dense_distance_oracle", s.shape ? s.shape->has_dense_oracle() : false)
-      .end_object();
-}
-
-void write_initialization(Json_writer& json, const std::string& key, const smc::Automatic_initialization_result& r)
-{
-  json.begin_object(key)
-      .value("functional_map_seconds", r.functional_map_seconds)
-      .value("zoomout_seconds", r.zoomout_seconds)
-      .value("total_seconds", r.total_seconds)
-      .value("selection_score", r.selection_score)
-      .value("orientation_sign", r.orientation_sign)
-      .value("cycle_error", r.cycle_error)
-      .value("cycle_fixed_fraction", r.cycle_fixed_fraction)
-      .value("orientation_agreement", r.orientation_agreement)
-      .value("initial_basis_size", r.initial_basis_size)
-      .value("final_basis_size", r.final_basis_size)
+      .value("initial_maps", origin(r.initial_maps))
+      .value("refined_maps", origin(r.refined_maps))
+      .value("used_landmarks", r.used_landmarks)
+      .value("repaired", r.repaired)
       .value("repair_passes", r.repair_passes)
-      .value("torn_fraction_before", r.torn_fraction_before)
-      .value("torn_fraction", r.torn_fraction)
-      .value("distortion_repair_passes", r.distortion_repair_passes)
-      .value("sample_distortion_before", r.sample_distortion_before)
-      .value("sample_distortion", r.sample_distortion)
-      .value("compared_with_automatic_maps", r.compared_with_automatic_maps)
+      .value("compared", r.compared)
       .value("automatic_maps_computed", r.automatic_maps_computed)
       .value("automatic_maps_kept", r.automatic_maps_kept)
       .value("given_maps_distortion", r.given_maps_distortion)
       .value("automatic_maps_distortion", r.automatic_maps_distortion)
+      .value("refined", r.refined)
+      .value("termination", smc::to_string(r.termination));
+  json.begin_array("decisions");
+  for(const std::string& d : r.decisions) json.element(d);
+  json.end_array();
+  json.begin_object("selection")
+      .value("refined_more_consistent", r.selection.refined_more_consistent)
+      .value("refined_fraction_12", r.selection.refined_fraction_12)
+      .value("refined_fraction_21", r.selection.refined_fraction_21)
+      .value("input_distortion", r.selection.input_distortion)
+      .value("refined_distortion", r.selection.refined_distortion)
+      .value("selected_distortion", r.selection.selected_distortion)
+      .value("inconsistent_input", r.selection.inconsistent_input)
+      .value("inconsistent_refined", r.selection.inconsistent_refined)
+      .value("inconsistent_selected", r.selection.inconsistent_selected)
       .end_object();
-}
-
-void write_refinement(Json_writer& json, const std::string& key, const smc::Coupled_refinement_result& r)
-{
-  json.begin_object(key)
-      .value("outer_iterations", r.outer_iterations)
-      .value("kept_outer_iterations", r.kept_outer_iterations)
-      .value("termination", smc::to_string(r.termination))
-      .value("inconsistent_vertices_before", r.inconsistent_vertices_before)
+  json.value("inconsistent_vertices_before", r.inconsistent_vertices_before)
       .value("inconsistent_vertices_after", r.inconsistent_vertices_after)
-      .value("data_preparation_seconds", r.data_preparation_seconds)
-      .value("trws_seconds", r.trws_seconds)
-      .value("total_seconds", r.total_seconds);
+      .value("cycle_error_before", r.cycle_error_before)
+      .value("cycle_error_after", r.cycle_error_after)
+      .value("distortion_before", r.distortion_before)
+      .value("distortion_after", r.distortion_after);
+  json.begin_object("initialization")
+      .value("functional_map_seconds", r.initialization.functional_map_seconds)
+      .value("zoomout_seconds", r.initialization.zoomout_seconds)
+      .value("orientation_sign", r.initialization.orientation_sign)
+      .value("orientation_agreement", r.initialization.orientation_agreement)
+      .value("torn_fraction_before", r.initialization.torn_fraction_before)
+      .value("torn_fraction", r.initialization.torn_fraction)
+      .value("passes", r.initialization.passes)
+      .end_object();
+  json.begin_object("stage_seconds");
+  for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
+    json.value(smc::to_string(smc::Matching_stage(s)), r.stage_seconds[std::size_t(s)]);
+  json.value("total", r.total_seconds).end_object();
+  json.begin_object("refinement")
+      .value("outer_iterations", r.refinement.outer_iterations)
+      .value("kept_outer_iterations", r.refinement.kept_outer_iterations)
+      .value("data_preparation_seconds", r.refinement.data_preparation_seconds)
+      .value("trws_seconds", r.refinement.trws_seconds);
   json.begin_array("steps");
-  for(const smc::Refinement_step& s : r.steps)
+  for(const smc::Refinement_step& s : r.refinement.steps)
     json.begin_object()
         .value("outer_iteration", s.outer_iteration)
         .value("direction", s.direction == 0 ? "1->2" : "2->1")
@@ -264,6 +131,7 @@ void write_refinement(Json_writer& json, const std::string& key, const smc::Coup
         .value("trws_seconds", s.trws_seconds)
         .end_object();
   json.end_array();
+  json.end_object();
   json.end_object();
 }
 
@@ -280,6 +148,32 @@ void write_error_statistics(Json_writer& json, const std::string& key, const smc
       .value("fraction_within_0.1", e.fraction_below(0.1));
   if(with_curve) json.value("thresholds", e.thresholds).value("cumulative", e.cumulative);
   json.end_object();
+}
+
+std::vector<std::pair<std::size_t, std::size_t> > read_landmarks(const std::string& file, int index_base,
+                                                                 std::size_t n1, std::size_t n2)
+{
+  std::ifstream in(file);
+  if(!in) throw Input_error("cannot open the landmark file " + file);
+  std::vector<std::pair<std::size_t, std::size_t> > out;
+  std::string line;
+  for(int number = 1; std::getline(in, line); ++number)
+  {
+    const std::string content = line.substr(0, line.find('#'));
+    if(content.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream fields(content);
+    long long a = 0, b = 0;
+    std::string rest;
+    if(!(fields >> a >> b) || (fields >> rest))
+      throw Input_error(file + ":" + std::to_string(number) + ": expected two vertex indices, found '" + content + "'");
+    if(a < index_base || b < index_base || std::size_t(a - index_base) >= n1 || std::size_t(b - index_base) >= n2)
+      throw Input_error(file + ":" + std::to_string(number) + ": landmark (" + std::to_string(a) + ", " +
+                        std::to_string(b) + ") is out of range (" + std::to_string(index_base) + "-based; " +
+                        std::to_string(n1) + " and " + std::to_string(n2) + " vertices)");
+    out.emplace_back(std::size_t(a - index_base), std::size_t(b - index_base));
+  }
+  if(out.empty()) throw Input_error("the landmark file " + file + " has no landmarks");
+  return out;
 }
 
 } // namespace comap

@@ -1,9 +1,8 @@
 // Copyright (c) 2026 The Surface_mesh_correspondence developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// comap: the matching pipeline on top of the library: preparing a shape once (spectrum shared by
-// the automatic initialisation and the descriptor stack), automatic initial maps, the coupled
-// refinement with progress lines, and JSON records of what happened.
+// comap: what every command that matches shares: the progress lines of match_shapes() (a visitor
+// of the library's stage events) and the JSON records of its result.
 
 #ifndef SMC_TOOLS_COMAP_PIPELINE_H
 #define SMC_TOOLS_COMAP_PIPELINE_H
@@ -13,11 +12,9 @@
 #include "comap_settings.h"
 
 #include <CGAL/Surface_mesh_correspondence/Correspondence_shape.h>
-#include <CGAL/Surface_mesh_correspondence/automatic_initialization.h>
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
-#include <CGAL/Surface_mesh_correspondence/refine_coupled_maps.h>
+#include <CGAL/Surface_mesh_correspondence/match_shapes.h>
 
-#include <memory>
 #include <string>
 
 namespace comap {
@@ -25,89 +22,77 @@ namespace comap {
 typedef smc::Correspondence_shape<Mesh, Concurrency> Shape;
 typedef smc::Map_evaluator<Concurrency> Evaluator;
 
-/// A mesh prepared once for everything a run needs: the refinement's Correspondence_shape
-/// and/or the automatic initialisation's spectrum and descriptors, on one flat copy. One
-/// eigensolve serves both when the refinement needs at most the initialisation's eigenpairs on
-/// the same operator (the defaults: 100 of 200): the refinement takes the leading eigenpairs.
-/// Otherwise each computes its own, so that the initialisation's maps are exactly those of
-/// automatic_initial_maps().
-class Prepared_shape
+typedef Mesh::Property_map<Mesh::Vertex_index, Mesh::Vertex_index> Vertex_vertex_map;
+
+/// A vertex-to-vertex property map of `source` holding `map` (indices of `target`'s vertices).
+inline Vertex_vertex_map vertex_property_map(Mesh& source, const std::string& name, const Vertex_map& map)
+{
+  Vertex_vertex_map p = source.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>(name).first;
+  for(std::size_t i = 0; i < map.size(); ++i) p[Mesh::Vertex_index(Mesh::size_type(i))] = Mesh::Vertex_index(Mesh::size_type(map[i]));
+  return p;
+}
+
+inline Vertex_map index_map(const Mesh& source, const Vertex_vertex_map& p)
+{
+  Vertex_map out(num_vertices(source));
+  for(Mesh::Vertex_index v : source.vertices()) out[v.idx()] = p[v].idx();
+  return out;
+}
+
+/// Runs match_shapes() (the overload on meshes) on two meshes read from files, with the initial maps and landmarks of the
+/// options when given; the maps are returned as indices.
+template <typename Parameters>
+smc::Matching_result match_meshes(Mesh& m1, Mesh& m2, const Vertex_map* init_12, const Vertex_map* init_21,
+                                  const Parameters& np, Vertex_map& map_12, Vertex_map& map_21)
+{
+  Vertex_vertex_map out12 = m1.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>("v:comap_out").first;
+  Vertex_vertex_map out21 = m2.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>("v:comap_out").first;
+  smc::Matching_result r;
+  if(init_12)
+  {
+    const Vertex_vertex_map in12 = vertex_property_map(m1, "v:comap_in", *init_12);
+    const Vertex_vertex_map in21 = vertex_property_map(m2, "v:comap_in", *init_21);
+    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, smc::parameters::initial_maps(in12, in21, np));
+  }
+  else
+    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, np);
+  map_12 = index_map(m1, out12);
+  map_21 = index_map(m2, out21);
+  return r;
+}
+
+/// The progress lines of a run: one per stage begun and ended, one per refinement solve, and the
+/// stages' progress at most every few seconds. Lines are prefixed by `label`.
+class Progress_visitor : public smc::Default_matching_visitor
 {
 public:
-  std::string name;  ///< the file (or label) used in messages
-  Mesh mesh;
-  /// The refinement's data (null when the run does not refine).
-  std::unique_ptr<Shape> shape;
-  /// The initialisation's descriptors (empty when the run is given initial maps).
-  Eigen::MatrixXd initialization_descriptors;
-  smc::Shape_preprocessing_times times;      ///< flat copy, spectrum, descriptor stack, distances
-  double initialization_seconds = 0;         ///< the initialisation's own spectrum (if any) and descriptors
-  double total_seconds = 0;                  ///< all of the preparation
-  /// True when the refinement's spectrum is the leading part of the initialisation's (one
-  /// eigensolve; its time is in `initialization_seconds`).
-  bool spectrum_from_initialization = false;
-
-  const smc::internal::Indexed_mesh& indexed_mesh() const { return shape ? shape->data().mesh : *own_mesh_; }
-  /// The spectrum of the initialisation.
-  const smc::Laplace_beltrami_spectrum& initialization_spectrum() const
-  {
-    return own_spectrum_ ? *own_spectrum_ : shape->data().largest_spectrum();
-  }
-  std::size_t number_of_vertices() const { return num_vertices(mesh); }
-  /// An evaluator of maps into this shape (built on first use; not thread-safe).
-  const Evaluator& evaluator() const;
+  explicit Progress_visitor(const Progress& progress, std::string label = "", bool steps = true)
+      : progress_(&progress), label_(std::move(label)), steps_(steps)
+  {}
+  bool stage_begun(smc::Matching_stage s);
+  bool progress(smc::Matching_stage s, double fraction);
+  bool stage_ended(smc::Matching_stage s, double seconds);
+  bool refinement_step(const smc::Refinement_step& s);
 
 private:
-  friend std::unique_ptr<Prepared_shape> prepare_shape(const std::string&, Mesh, const Settings&, bool, bool,
-                                                       const Progress&);
-  std::unique_ptr<smc::internal::Indexed_mesh> own_mesh_;
-  std::shared_ptr<const smc::Laplace_beltrami_spectrum> own_spectrum_;
-  mutable std::unique_ptr<Evaluator> evaluator_;
+  const Progress* progress_;
+  std::string label_;
+  bool steps_;
+  double last_line_ = -1e9;
 };
 
-/// Prepares `mesh` for the refinement (`for_refinement`) and/or the automatic initialisation
-/// (`for_initialization`), printing one progress line.
-std::unique_ptr<Prepared_shape> prepare_shape(const std::string& name, Mesh mesh, const Settings& settings,
-                                              bool for_refinement, bool for_initialization,
-                                              const Progress& progress);
+/// Writes the result of match_shapes() (decisions, stage times, consistency and distortion,
+/// refinement solves) as a JSON object named `key`.
+void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r);
 
-/// Automatic initial maps between two prepared shapes (prepared with `for_initialization`).
-smc::Automatic_initialization_result initialize_maps(const Prepared_shape& a, const Prepared_shape& b,
-                                                     const Settings& settings, Vertex_map& map_12,
-                                                     Vertex_map& map_21);
-/// The tear repair of the automatic initialisation applied to given maps (see
-/// smc::repair_torn_maps(); `repair_tears` false: none), then, with
-/// settings.initialization.compare_with_automatic_maps, the comparison with the automatic maps
-/// (smc::compare_with_automatic_maps()); the shapes must be prepared for the initialisation.
-smc::Automatic_initialization_result repair_maps(const Prepared_shape& a, const Prepared_shape& b,
-                                                 const Settings& settings, Vertex_map& map_12, Vertex_map& map_21,
-                                                 bool repair_tears);
-/// One progress line describing an initialisation or repair result.
-std::string initialization_summary(const smc::Automatic_initialization_result& r);
-
-/// Whether repair_maps() returned maps of the automatic initialisation (the automatic maps of
-/// --compare-automatic, or a kept repair pass, whose maps are ZoomOut maps steered by landmarks
-/// from the given maps' core) rather than the given maps: such maps are refined with the preset
-/// for automatic maps.
-bool repaired_maps_are_automatic(const smc::Automatic_initialization_result& r);
-
-/// The coupled refinement of `map_12` and `map_21` in place, with one progress line per MRF
-/// solve prefixed by `label`. `automatic_input`: the maps come from initialize_maps() (see
-/// Settings::keep_consistent_input_maps).
-smc::Coupled_refinement_result refine_maps(const Prepared_shape& a, const Prepared_shape& b, Vertex_map& map_12,
-                                           Vertex_map& map_21, const Settings& settings, bool automatic_input,
-                                           const Progress& progress, const std::string& label = "");
-
-/// "spectrum 1.2 s, descriptors 0.8 s, distances 1.1 s"
-std::string preparation_summary(const Prepared_shape& s);
-
-void write_preparation(Json_writer& json, const std::string& key, const Prepared_shape& s);
-void write_initialization(Json_writer& json, const std::string& key, const smc::Automatic_initialization_result& r);
-void write_refinement(Json_writer& json, const std::string& key, const smc::Coupled_refinement_result& r);
 /// Mean, median, maximum, fractions within 0.025 / 0.05 / 0.1 and, with `with_curve`, the
 /// cumulative curve.
 void write_error_statistics(Json_writer& json, const std::string& key, const smc::Error_statistics& e,
                             bool with_curve);
+
+/// Pairs "i j" of vertex indices, one per line ('#' starts a comment), checked against the sizes.
+std::vector<std::pair<std::size_t, std::size_t> > read_landmarks(const std::string& file, int index_base,
+                                                                 std::size_t n1, std::size_t n2);
 
 } // namespace comap
 

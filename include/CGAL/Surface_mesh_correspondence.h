@@ -9,6 +9,7 @@
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_H
 
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/trws.h>
 #include <CGAL/Surface_mesh_correspondence/laplacian.h>
@@ -27,5 +28,6 @@
 #include <CGAL/Surface_mesh_correspondence/automatic_initialization.h>
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
+#include <CGAL/Surface_mesh_correspondence/match_shapes.h>
 
 #endif // CGAL_SURFACE_MESH_CORRESPONDENCE_H

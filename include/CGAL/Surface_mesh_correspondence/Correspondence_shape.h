@@ -13,7 +13,9 @@
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/dijkstra.h>
+#include <CGAL/Surface_mesh_correspondence/internal/initialization_data.h>
 #include <CGAL/Surface_mesh_correspondence/internal/nearest_vertex.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
 
@@ -31,20 +33,6 @@ namespace CGAL {
 namespace Surface_mesh_correspondence {
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// Which geodesic distance oracle a shape uses for the pairwise terms of the coupled refinement
-/// (named parameter `distance_oracle`).
-enum class Distance_oracle_type
-{
-  automatic,  ///< dense up to `maximum_dense_vertices` vertices, local above
-  dense,      ///< all pairs in a float matrix (Dense_distance_oracle): n^2 memory
-  local       ///< exact within a radius, landmark estimate beyond (Local_distance_oracle): linear memory
-};
-
-/// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// Number of vertices up to which Distance_oracle_type::automatic builds the dense oracle.
-constexpr int maximum_dense_vertices = 0;
-
-/// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Seconds spent on each part of a shape's preprocessing.
 struct Shape_preprocessing_times
 {
@@ -52,25 +40,14 @@ struct Shape_preprocessing_times
   double spectrum = 0;     ///< Laplace-Beltrami eigenpairs
   double descriptors = 0;  ///< HKS, WKS, SHOT and the stack
   double distances = 0;    ///< the geodesic distance oracle
-  double total() const { return mesh + spectrum + descriptors + distances; }
+  double initialization = 0;  ///< the automatic initialisation's descriptors
+  double total() const { return mesh + spectrum + descriptors + distances + initialization; }
 };
 
 /// An n x D descriptor stack stored row by row.
 typedef Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Descriptor_matrix;
 
 namespace internal {
-
-/// What the automatic initialisation computes for one shape (its spectrum when the shape's own
-/// does not serve, and its descriptors), kept by the shape for later calls with the same
-/// descriptor settings (`key`). One entry; the mutex makes concurrent calls on the same shape
-/// compute it once.
-struct Shape_initialization_cache
-{
-  std::mutex mutex;
-  std::vector<double> key;
-  std::shared_ptr<const Laplace_beltrami_spectrum> spectrum;  ///< null: the shape's own spectrum served
-  std::shared_ptr<const Eigen::MatrixXd> descriptors;          ///< null: nothing cached yet
-};
 
 /// Index-based precomputed data of a shape (what the algorithms use).
 struct Shape_data
@@ -130,38 +107,31 @@ struct Shape_data
 /// Settings of a shape's preprocessing.
 struct Shape_settings
 {
-  int number_of_eigenpairs = 100;
-  bool use_intrinsic_delaunay = true;
+  int number_of_eigenpairs = matching_defaults().number_of_eigenpairs;
+  bool use_intrinsic_delaunay = matching_defaults().use_intrinsic_delaunay;
   Descriptor_settings descriptors;
-  Distance_oracle_type oracle = Distance_oracle_type::automatic;
+  Distance_oracle_type oracle = matching_defaults().distance_oracle;
   // The refinement only needs exact distances between candidates of neighbouring source vertices
   // (within about 2 r + 1 rings); anything farther costs far more than a mesh edge whatever its
   // exact value, so a smaller radius and a coarse landmark estimate suffice (and build 2-3x faster
-  // than the oracle's general-purpose defaults).
-  double local_radius_in_edge_lengths = 10;
-  int number_of_landmarks = 32;
+  // than a general-purpose oracle).
+  double local_radius_in_edge_lengths = matching_defaults().oracle_radius;
+  int number_of_landmarks = matching_defaults().oracle_landmarks;
+  /// Eigenpairs that the automatic initialisation needs (0: none): the shape solves for the larger
+  /// of this and number_of_eigenpairs once, and the refinement's descriptors use the leading ones.
+  int initialization_eigenpairs = 0;
 
-  template <typename NamedParameters>
-  static Shape_settings from(const NamedParameters& np)
+  static Shape_settings from(const Matching_settings& m)
   {
-    using parameters::choose_parameter;
-    using parameters::get_parameter;
     Shape_settings s;
-    s.number_of_eigenpairs =
-        choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs), s.number_of_eigenpairs);
-    s.use_intrinsic_delaunay =
-        choose_parameter(get_parameter(np, internal_np::use_intrinsic_delaunay), s.use_intrinsic_delaunay);
-    s.descriptors = Descriptor_settings::from(np);
-    s.oracle = choose_parameter(get_parameter(np, internal_np::distance_oracle), s.oracle);
-    s.local_radius_in_edge_lengths =
-        choose_parameter(get_parameter(np, internal_np::number_of_rings), s.local_radius_in_edge_lengths);
-    s.number_of_landmarks =
-        choose_parameter(get_parameter(np, internal_np::number_of_landmarks), s.number_of_landmarks);
-    if(s.number_of_eigenpairs < 2)
-      throw Invalid_parameter_error("number_of_eigenpairs = " + std::to_string(s.number_of_eigenpairs) +
-                                    " must be at least 2");
-    if(!(s.local_radius_in_edge_lengths > 0))
-      throw Invalid_parameter_error("number_of_rings (local oracle radius) must be positive");
+    s.number_of_eigenpairs = m.number_of_eigenpairs;
+    s.use_intrinsic_delaunay = m.use_intrinsic_delaunay;
+    s.descriptors = Descriptor_settings::from(m);
+    s.oracle = m.distance_oracle;
+    s.local_radius_in_edge_lengths = m.oracle_radius;
+    s.number_of_landmarks = m.oracle_landmarks;
+    s.initialization_eigenpairs = m.initialization_number_of_eigenpairs > 0 ? m.initialization_number_of_eigenpairs
+                                                                            : m.zoomout_final_size;
     return s;
   }
 };
@@ -216,6 +186,9 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
 
   t = std::chrono::steady_clock::now();
   const int k = std::min(s.number_of_eigenpairs, n - 1);
+  // One eigensolve for the refinement and the initialisation when both use the intrinsic Delaunay
+  // operator: the refinement takes the leading eigenpairs.
+  const int solved = s.use_intrinsic_delaunay ? std::min(std::max(k, s.initialization_eigenpairs), n - 1) : k;
   if(given)
   {
     check_precomputed_spectrum(*given, d.mesh, k, s);
@@ -223,6 +196,11 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
     if(given->number_of_eigenpairs() > k)
       d.larger_spectrum =
           shared_given ? std::move(shared_given) : std::make_shared<const Laplace_beltrami_spectrum>(*given);
+  }
+  else if(solved > k)
+  {
+    d.larger_spectrum = std::make_shared<const Laplace_beltrami_spectrum>(d.mesh, parameters::number_of_eigenpairs(solved));
+    d.spectrum.reset(new Laplace_beltrami_spectrum(*d.larger_spectrum, k));
   }
   else
     d.spectrum.reset(new Laplace_beltrami_spectrum(
@@ -234,9 +212,7 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
   d.times.descriptors = seconds_since(t);
 
   t = std::chrono::steady_clock::now();
-  const bool dense = s.oracle == Distance_oracle_type::dense ||
-                     (s.oracle == Distance_oracle_type::automatic && n <= maximum_dense_vertices);
-  if(dense)
+  if(s.oracle == Distance_oracle_type::dense)
     d.oracle = Dense_distance_oracle::build<ConcurrencyTag>(d.mesh);
   else
   {
@@ -249,14 +225,27 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
 
 } // namespace internal
 
+namespace internal {
+
+/// Whether a shape is prepared for the automatic initialisation too (its spectrum with the
+/// initialisation's eigenpairs, its descriptors): match_shapes() on meshes leaves it out when the
+/// run does not need it.
+struct Shape_preparation
+{
+  bool for_initialization = true;
+};
+
+} // namespace internal
+
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// The precomputed data of one shape for matching: its flat copy, Laplace-Beltrami spectrum,
-/// descriptor stack, geodesic distance oracle and search structures. The expensive part of the
-/// coupled refinement that depends on one shape only is done here once: a shape matched against
-/// many others is prepared once. The automatic initialisation on shapes (automatic_initial_maps(),
-/// repair_torn_maps(), compare_with_automatic_maps()) also keeps what it computes for a shape (its
-/// descriptors, and its spectrum when the shape's own does not serve) for later calls with the
-/// same descriptor settings; copies of a shape share all of this.
+/// The precomputed data of one shape for matching: its flat copy, one Laplace-Beltrami spectrum
+/// (the eigenpairs of the automatic initialisation, whose leading ones also make the refinement's
+/// descriptors), the refinement's descriptor stack, the initialisation's descriptors, the geodesic
+/// distance oracle and search structures. A shape matched against many others is prepared once
+/// and passed to match_shapes() for every pair (the Heat_method_3 pattern of a class for the
+/// precomputation and a function for the solve). Copies of a shape share all of this; a call with
+/// other initialisation descriptor settings computes and keeps those (once, also under concurrent
+/// calls).
 ///
 /// Vertices are numbered by the mesh's vertex index map (named parameter `vertex_index_map`);
 /// maps between prepared shapes are vectors of such indices (Vertex_index_map_vector).
@@ -272,37 +261,50 @@ public:
 
   /// Prepares `tm`. The mesh must be a connected, manifold triangle mesh (boundaries are fine).
   /// \param np optional named parameters:
-  ///   - `number_of_eigenpairs` (int, default 100): Laplace-Beltrami eigenpairs for HKS/WKS;
-  ///   - `use_intrinsic_delaunay` (bool, default true);
+  ///   - the settings of stage `preparation` (number_of_eigenpairs, use_intrinsic_delaunay, the
+  ///     descriptor weights and parameters, distance_oracle, oracle_radius, oracle_landmarks) and
+  ///     those of stage `initialization` that its spectrum and descriptors depend on, with
+  ///     `matching_settings` (see Matching_settings and the settings table of the manual); pass the
+  ///     same settings to match_shapes();
+  ///   - `user_descriptor_map`: a readable property map from the vertices to a fixed-size range of
+  ///     numbers, appended to the descriptor stack with `user_descriptor_weight`;
   ///   - `precomputed_spectrum` (a Laplace_beltrami_spectrum of `tm` with at least
   ///     `number_of_eigenpairs` eigenpairs and the same `use_intrinsic_delaunay`, best passed as
-  ///     `std::cref(spectrum)`): its first eigenpairs are used instead of a new eigensolve, for
-  ///     example the spectrum already computed for the automatic initialisation (200 eigenpairs
-  ///     by default); a spectrum of another mesh (vertex count or areas) throws
-  ///     Invalid_parameter_error. When it has more eigenpairs than the shape uses, the shape
-  ///     keeps a copy, and automatic_initial_maps() on the shape takes its eigenpairs from it;
-  ///     passed as a `std::shared_ptr<const Laplace_beltrami_spectrum>`, it is shared instead of
-  ///     copied;
-  ///   - `hks_weight`, `wks_weight`, `shot_weight`, `user_descriptor_map`,
-  ///     `user_descriptor_weight`, `number_of_hks_scales`, `number_of_wks_energies`,
-  ///     `wks_variance`, `shot_radius`: the descriptor stack (see descriptor_stack());
-  ///   - `distance_oracle` (Distance_oracle_type, default automatic: local oracle);
-  ///   - `number_of_rings` (double, default 15): radius of the local oracle's exact distances,
-  ///     in mean edge lengths; `number_of_landmarks` (int, default 256): its far estimate;
+  ///     `std::cref(spectrum)` or as a `std::shared_ptr<const Laplace_beltrami_spectrum>`, which is
+  ///     shared instead of copied): used instead of a new eigensolve; a spectrum of another mesh
+  ///     (vertex count or areas) throws Invalid_parameter_error;
   ///   - `vertex_point_map`, `vertex_index_map`.
+  /// \param name the mesh's name in error messages
   /// \throws Invalid_mesh_error (empty, non-triangle, non-manifold, degenerate face, NaN,
-  ///   isolated vertex, several components), Invalid_parameter_error, Numerical_error
+  ///   isolated vertex, several components, too few vertices for the initialisation's basis),
+  ///   Invalid_parameter_error, Numerical_error
   template <typename NamedParameters = parameters::Default_named_parameters>
   explicit Correspondence_shape(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
                                 const std::string& name = "mesh")
+      : Correspondence_shape(tm, np, internal::Shape_preparation(), name)
+  {}
+
+  /// As above; `preparation` says whether the shape is prepared for the initialisation.
+  template <typename NamedParameters>
+  Correspondence_shape(const TriangleMesh& tm, const NamedParameters& np, internal::Shape_preparation preparation,
+                       const std::string& name)
       : data_(new internal::Shape_data)
   {
+    const Matching_settings settings = Matching_settings::from(np);
     auto t = std::chrono::steady_clock::now();
     internal::Mesh_requirements req;
     req.allow_several_components = false;
     data_->mesh = internal::make_indexed_mesh(tm, np, req, name, &vertices_);
     data_->times.mesh = internal::seconds_since(t);
-    const internal::Shape_settings s = internal::Shape_settings::from(np);
+    internal::Shape_settings s = internal::Shape_settings::from(settings);
+    if(!preparation.for_initialization) s.initialization_eigenpairs = 0;
+    const internal::Initialization_settings init = internal::initialization_settings(settings);
+    if(preparation.for_initialization && data_->mesh.number_of_vertices() <= std::max(init.zoomout_final_size,
+                                                                 internal::initialization_number_of_eigenpairs(init)))
+      throw Invalid_mesh_error(name + " has " + std::to_string(data_->mesh.number_of_vertices()) +
+                               " vertices, too few for the automatic initialisation's basis of " +
+                               std::to_string(init.zoomout_final_size) +
+                               " eigenfunctions (reduce zoomout_final_size)");
     Eigen::MatrixXd user;
     const auto& user_map = parameters::get_parameter(np, internal_np::user_descriptor_map);
     if constexpr(!std::is_same<typename std::decay<decltype(user_map)>::type,
@@ -321,6 +323,14 @@ public:
     {
       const Laplace_beltrami_spectrum& spectrum = given;
       internal::prepare_shape_data<ConcurrencyTag>(*data_, s, user, &spectrum);
+    }
+    if(preparation.for_initialization)
+    {
+      t = std::chrono::steady_clock::now();
+      internal::Initialization_mesh_data d;
+      internal::prepare_initialization_mesh<ConcurrencyTag>(data_->mesh, &data_->largest_spectrum(), init,
+                                                            name.c_str(), d, data_->initialization.get());
+      data_->times.initialization = internal::seconds_since(t);
     }
   }
 

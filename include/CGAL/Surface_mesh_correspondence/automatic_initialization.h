@@ -38,81 +38,6 @@ namespace Surface_mesh_correspondence {
 
 namespace internal {
 
-/// The spectrum and the descriptors of one flat mesh for automatic_initial_maps(): `given` is
-/// reused when it has at least the eigenpairs the initialisation needs on the intrinsic Delaunay
-/// triangulation (exactly as many: the maps equal those computed from the mesh alone; more: its
-/// leading eigenpairs, equal to a new solve's up to the solver's tolerance), else computed.
-struct Initialization_mesh_data
-{
-  std::shared_ptr<const Laplace_beltrami_spectrum> own_spectrum;
-  const Laplace_beltrami_spectrum* spectrum = nullptr;
-  std::shared_ptr<const Eigen::MatrixXd> descriptors;
-  bool reused = false;  ///< `given` served
-  bool cached = false;  ///< taken from the shape's cache
-};
-
-/// What initialization_descriptors() and the initialisation's spectrum depend on: two settings
-/// with the same key give the same spectrum and descriptors on a shape.
-inline std::vector<double> initialization_cache_key(const Initialization_settings& s)
-{
-  const Initialization_descriptor_layout l = initialization_descriptor_layout(s);
-  std::vector<double> key{double(initialization_number_of_eigenpairs(s)), double(pass_final_size(s)),
-                          double(l.wks), double(l.hks), s.wks_variance, double(s.signed_descriptor_smoothing)};
-  for(const auto& p : l.signed_pairs)
-  {
-    key.push_back(p.first);
-    key.push_back(p.second);
-  }
-  return key;
-}
-
-/// Fills `out` for mesh `m`. With a `cache` (a prepared shape's), the spectrum and descriptors
-/// kept there for the same settings are taken, else computed and kept.
-inline void prepare_initialization_mesh(const Indexed_mesh& m, const Laplace_beltrami_spectrum* given,
-                                        const Initialization_settings& s, const char* name,
-                                        Initialization_mesh_data& out, Shape_initialization_cache* cache = nullptr)
-{
-  const int k = initialization_number_of_eigenpairs(s);
-  // Checked before the eigensolver, which would fail with a less helpful message.
-  if(m.number_of_vertices() <= s.zoomout_final_size || m.number_of_vertices() <= k)
-    throw Invalid_mesh_error(std::string("automatic_initial_maps: ") + name + " has " +
-                             std::to_string(m.number_of_vertices()) + " vertices, too few for a basis of " +
-                             std::to_string(k) + " eigenfunctions (reduce zoomout_final_size)");
-  out.reused = given && given->number_of_eigenpairs() >= k && given->uses_intrinsic_delaunay();
-  std::unique_lock<std::mutex> lock;
-  std::vector<double> key;
-  if(cache)
-  {
-    lock = std::unique_lock<std::mutex>(cache->mutex);  // held while computing: computed once
-    key = initialization_cache_key(s);
-    if(cache->descriptors && cache->key == key)
-    {
-      out.own_spectrum = cache->spectrum;
-      out.spectrum = out.own_spectrum ? out.own_spectrum.get() : given;
-      out.descriptors = cache->descriptors;
-      out.cached = true;
-      return;
-    }
-  }
-  if(out.reused && given->number_of_eigenpairs() == k)
-    out.spectrum = given;
-  else
-  {
-    out.own_spectrum = out.reused ? std::make_shared<const Laplace_beltrami_spectrum>(*given, k)
-                                  : std::make_shared<const Laplace_beltrami_spectrum>(
-                                        m, parameters::number_of_eigenpairs(k));
-    out.spectrum = out.own_spectrum.get();
-  }
-  out.descriptors =
-      std::make_shared<const Eigen::MatrixXd>(initialization_descriptors<CGAL::Sequential_tag>(m, *out.spectrum, s));
-  if(cache)
-  {
-    cache->key = std::move(key);
-    cache->spectrum = out.own_spectrum;
-    cache->descriptors = out.descriptors;
-  }
-}
-
 /// A flat mesh for on_prepared_meshes(): with a prepared shape's spectrum (to reuse when it
 /// serves) and cache, or neither.
 struct Initialization_mesh_source
@@ -137,8 +62,8 @@ Automatic_initialization_result on_prepared_meshes(const Initialization_mesh_sou
 {
   Initialization_mesh_data d1, d2;
   invoke_both<ConcurrencyTag>(
-      [&] { prepare_initialization_mesh(*m1.mesh, m1.spectrum, s, "mesh 1", d1, m1.cache); },
-      [&] { prepare_initialization_mesh(*m2.mesh, m2.spectrum, s, "mesh 2", d2, m2.cache); });
+      [&] { prepare_initialization_mesh<ConcurrencyTag>(*m1.mesh, m1.spectrum, s, "mesh 1", d1, m1.cache); },
+      [&] { prepare_initialization_mesh<ConcurrencyTag>(*m2.mesh, m2.spectrum, s, "mesh 2", d2, m2.cache); });
   const double prepare_seconds = seconds_since(start);
   const Initialization_shape a{m1.mesh, d1.spectrum, d1.descriptors.get()},
       b{m2.mesh, d2.spectrum, d2.descriptors.get()};
@@ -251,7 +176,7 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     wrong on a large part, e.g. half-body flips; see repair_distorted_maps()); type `int`;
 ///     default 0 (each pass costs about as much as the first one).
 ///   - `compare_with_automatic_maps`: repair_torn_maps() only (ignored here): whether the repaired
-///     given maps compete with the automatic maps; type `bool`; default false.
+///     given maps compete with the automatic maps; type `bool`; default true.
 ///   - `automatic_maps_comparison_threshold`: repair_torn_maps() with the comparison and
 ///     compare_with_automatic_maps() only (ignored here): the automatic maps are computed and
 ///     compared only when the given maps' sample distortion is above it; type `double`; default
@@ -315,13 +240,14 @@ Automatic_initialization_result automatic_initial_maps(const Correspondence_shap
 
 namespace internal {
 
-/// The settings of the public functions on given maps: repair_torn_maps() and, with `compare`
-/// (which overrides the named parameter), compare_with_automatic_maps(); checked.
+/// The settings of the public functions on given maps: repair_torn_maps() (the comparison as the
+/// setting `compare_with_automatic_maps` says) and, with `compare` (which overrides the setting),
+/// compare_with_automatic_maps(); checked.
 template <typename NamedParameters>
 Initialization_settings given_maps_settings(const NamedParameters& np, bool compare)
 {
   Initialization_settings s = initialization_settings(np);
-  if(compare) s.compare_with_automatic_maps = true;
+  s.compare_with_automatic_maps = compare || Matching_settings::from(np).compare_with_automatic_maps;
   check_initialization_settings(s);
   return s;
 }
@@ -366,14 +292,14 @@ Automatic_initialization_result repair_given_maps_of_meshes(const TriangleMesh1&
 /// Repairs maps that swap parts of the shapes (limbs, feet): the tear repair of
 /// automatic_initial_maps() applied to maps computed elsewhere. Each map's source is cut along its
 /// tears (edges whose endpoints land at least `tear_threshold` sqrt(area) apart); when the regions
-/// cut off from the largest one (the core) exceed `tear_min_fraction` of a mesh, both maps are
+/// cut off from the largest one (the core) exceed `tear_area_fraction` of a mesh, both maps are
 /// recomputed by the automatic initialisation with farthest-point samples of the cores (and
 /// their images) as landmarks, in the orientation of the given maps, and kept when they are less
 /// torn and at most `tear_repair_distortion_tolerance` (5%) more distorted. Maps without tears
 /// are returned unchanged. With `number_of_distortion_repair_passes`, the distortion repair
 /// follows (see repair_distorted_maps(): maps whose sample distortion is above 0.035 are
 /// recomputed from landmarks in their isometric core, and kept when at least 20% less distorted).
-/// With `compare_with_automatic_maps(true)` the (repaired) maps then compete with the automatic
+/// Unless `compare_with_automatic_maps(false)`, the (repaired) maps then compete with the automatic
 /// maps of the pair (automatic_initial_maps(), about the time of one more initialisation): the
 /// pair of maps whose farthest-point samples' geodesic distances are less distorted is returned,
 /// unless the repaired maps distort them at most `automatic_maps_comparison_threshold` (default
@@ -420,8 +346,8 @@ Automatic_initialization_result repair_torn_maps(const Correspondence_shape<Tria
 /// Keeps maps computed elsewhere, or replaces them by the automatic maps of the pair
 /// (automatic_initial_maps() with the same named parameters), whichever distort the geodesic
 /// distances between 100 farthest-point samples of each mesh less (mean of both directions; ties
-/// keep the given maps). The given maps are not repaired (repair_torn_maps() with
-/// `compare_with_automatic_maps(true)` repairs them first). A safety net for maps that may be
+/// keep the given maps). The given maps are not repaired (repair_torn_maps() repairs them first,
+/// then compares). A safety net for maps that may be
 /// wrong as a whole (symmetry flips, a body turned by 180 degrees), which no local refinement
 /// undoes; it costs one automatic initialisation, except on given maps whose sample distortion is
 /// at most `automatic_maps_comparison_threshold` (default 0.035; 0: always compare), which are kept

@@ -11,6 +11,7 @@
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/heat_kernel_signature.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/shot.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
@@ -31,35 +32,40 @@ namespace Surface_mesh_correspondence {
 /// near-isometric shapes.
 struct Descriptor_settings
 {
-  double hks_weight = 0.5;          ///< weight of the heat kernel signature block
-  double wks_weight = 1.0;          ///< weight of the wave kernel signature block
-  double shot_weight = 1.0;         ///< weight of the SHOT block
-  double user_weight = 1.0;         ///< weight of the user-supplied block, if any
-  int number_of_hks_scales = internal::default_number_of_hks_scales;  ///< HKS times
-  int number_of_wks_energies = 100; ///< WKS energies
-  double wks_variance = 7.0;        ///< WKS variance, in multiples of the energy step
-  double shot_radius = internal::default_shot_radius;  ///< SHOT radius relative to sqrt(area)
+  double hks_weight = internal::matching_defaults().hks_weight;    ///< weight of the heat kernel signature block
+  double wks_weight = internal::matching_defaults().wks_weight;    ///< weight of the wave kernel signature block
+  double shot_weight = internal::matching_defaults().shot_weight;  ///< weight of the SHOT block
+  /// weight of the user-supplied block, if any
+  double user_weight = internal::matching_defaults().user_descriptor_weight;
+  int number_of_hks_scales = internal::matching_defaults().number_of_hks_scales;      ///< HKS times
+  int number_of_wks_energies = internal::matching_defaults().number_of_wks_energies;  ///< WKS energies
+  /// WKS variance, in multiples of the energy step
+  double wks_variance = internal::matching_defaults().wks_variance;
+  double shot_radius = internal::matching_defaults().shot_radius;  ///< SHOT radius relative to sqrt(area)
 
-  /// Reads the settings from named parameters (`hks_weight`, `wks_weight`, `shot_weight`,
-  /// `user_descriptor_weight`, `number_of_hks_scales`, `number_of_wks_energies`,
-  /// `wks_variance`, `shot_radius`), keeping the defaults for those not given.
+  /// The descriptor settings of `m` (`hks_weight`, `wks_weight`, `shot_weight`,
+  /// `user_descriptor_weight`, `number_of_hks_scales`, `number_of_wks_energies`, `wks_variance`,
+  /// `shot_radius`).
+  static Descriptor_settings from(const Matching_settings& m)
+  {
+    Descriptor_settings s;
+    s.hks_weight = m.hks_weight;
+    s.wks_weight = m.wks_weight;
+    s.shot_weight = m.shot_weight;
+    s.user_weight = m.user_descriptor_weight;
+    s.number_of_hks_scales = m.number_of_hks_scales;
+    s.number_of_wks_energies = m.number_of_wks_energies;
+    s.wks_variance = m.wks_variance;
+    s.shot_radius = m.shot_radius;
+    return s;
+  }
+
+  /// Reads the settings from named parameters (see from(const Matching_settings&)), keeping the
+  /// registry's defaults for those not given.
   template <typename NamedParameters>
   static Descriptor_settings from(const NamedParameters& np)
   {
-    using parameters::choose_parameter;
-    using parameters::get_parameter;
-    Descriptor_settings s;
-    s.hks_weight = choose_parameter(get_parameter(np, internal_np::hks_weight), s.hks_weight);
-    s.wks_weight = choose_parameter(get_parameter(np, internal_np::wks_weight), s.wks_weight);
-    s.shot_weight = choose_parameter(get_parameter(np, internal_np::shot_weight), s.shot_weight);
-    s.user_weight = choose_parameter(get_parameter(np, internal_np::user_descriptor_weight), s.user_weight);
-    s.number_of_hks_scales =
-        choose_parameter(get_parameter(np, internal_np::number_of_hks_scales), s.number_of_hks_scales);
-    s.number_of_wks_energies =
-        choose_parameter(get_parameter(np, internal_np::number_of_wks_energies), s.number_of_wks_energies);
-    s.wks_variance = choose_parameter(get_parameter(np, internal_np::wks_variance), s.wks_variance);
-    s.shot_radius = choose_parameter(get_parameter(np, internal_np::shot_radius), s.shot_radius);
-    return s;
+    return from(Matching_settings::from(np));
   }
 
   /// Throws Invalid_parameter_error for a negative or non-finite weight, or when every weight is 0.

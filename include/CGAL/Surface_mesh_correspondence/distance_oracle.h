@@ -17,6 +17,7 @@
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/geodesic_distances.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/cgal_geodesics.h>
@@ -530,24 +531,19 @@ Dense_distance_oracle make_dense_distance_oracle(const TriangleMesh& tm,
   return Dense_distance_oracle::build<ConcurrencyTag>(m, method);
 }
 
-/// The default local radius of Local_distance_oracle, in mean edge lengths.
-constexpr int default_local_radius_in_edge_lengths = 15;
-/// The default number of landmarks of Local_distance_oracle.
-constexpr int default_number_of_landmarks = 256;
-
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Builds the local distance oracle of `tm` (memory linear in n; for large meshes).
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag`
 /// \tparam TriangleMesh a model of `FaceListGraph` whose faces are triangles
 /// \tparam NamedParameters a sequence of named parameters:
-///   - `local_radius`: the radius \f$ R \f$ of the exact rows, in the mesh's length unit (default:
-///     `number_of_rings` times the mean edge length);
-///   - `number_of_rings`: the radius in mean edge lengths when `local_radius` is not given
-///     (default: 15, i.e. about 15 rings: every pair of candidates of two neighbouring source
-///     vertices drawn from 6-ring neighbourhoods of nearby targets is local);
-///   - `number_of_landmarks`: landmarks of the far estimate (default: 256);
+///   - `oracle_radius` (double, default 10): the radius \f$ R \f$ of the exact rows, in mean edge
+///     lengths (about as many rings: every pair of candidates of two neighbouring source vertices
+///     drawn from 4-ring neighbourhoods of nearby targets is local);
+///   - `local_radius`: the radius in the mesh's length unit instead (overrides `oracle_radius`);
+///   - `oracle_landmarks` (int, default 32): landmarks of the estimate beyond the radius;
 ///   - `vertex_point_map`, `vertex_index_map`.
+/// The defaults are those of the settings registry (the shapes of match_shapes() use them).
 /// \throws Invalid_mesh_error, Invalid_parameter_error (non-positive radius or landmark count).
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
@@ -557,16 +553,15 @@ Local_distance_oracle make_local_distance_oracle(const TriangleMesh& tm,
   using parameters::choose_parameter;
   using parameters::get_parameter;
   const internal::Indexed_mesh m = internal::make_indexed_mesh(tm, np);
-  const double rings = choose_parameter(get_parameter(np, internal_np::number_of_rings),
-                                        double(default_local_radius_in_edge_lengths));
+  const Matching_settings defaults;
+  const double rings = choose_parameter(get_parameter(np, internal_np::oracle_radius), defaults.oracle_radius);
   double radius = 0;
   {
     internal::Edge_length_graph graph(m);
     radius = rings * graph.mean_edge_length;
   }
   radius = choose_parameter(get_parameter(np, internal_np::local_radius), radius);
-  const int landmarks =
-      choose_parameter(get_parameter(np, internal_np::number_of_landmarks), default_number_of_landmarks);
+  const int landmarks = choose_parameter(get_parameter(np, internal_np::oracle_landmarks), defaults.oracle_landmarks);
   return Local_distance_oracle::build<ConcurrencyTag>(m, radius, landmarks);
 }
 

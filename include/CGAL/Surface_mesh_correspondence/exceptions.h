@@ -67,6 +67,14 @@ public:
   explicit IO_error(const std::string& what) : Error(what) {}
 };
 
+/// match_shapes() was stopped by its visitor (a visitor function returned false). The output
+/// maps are left as they were.
+class Matching_stopped : public Error
+{
+public:
+  explicit Matching_stopped(const std::string& what) : Error(what) {}
+};
+
 } // namespace Surface_mesh_correspondence
 } // namespace CGAL
 

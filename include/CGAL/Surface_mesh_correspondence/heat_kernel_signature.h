@@ -9,6 +9,7 @@
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/spectral_signature.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
 
@@ -24,7 +25,6 @@ namespace Surface_mesh_correspondence {
 namespace internal {
 
 /// Default number of HKS time samples.
-constexpr int default_number_of_hks_scales = 16;
 
 template <typename NamedParameters>
 int number_of_hks_scales(const NamedParameters& np)
@@ -32,7 +32,7 @@ int number_of_hks_scales(const NamedParameters& np)
   using parameters::choose_parameter;
   using parameters::get_parameter;
   const int d = choose_parameter(get_parameter(np, internal_np::number_of_hks_scales),
-                                 default_number_of_hks_scales);
+                                 internal::matching_defaults().number_of_hks_scales);
   if(d < 1)
     throw Invalid_parameter_error("heat kernel signature: number_of_hks_scales = " +
                                   std::to_string(d) + " must be at least 1");

@@ -15,87 +15,51 @@
 //   parameters::number_of_candidates(20).vertex_point_map(vpm)
 // and `parameters::combine(a, b)` merges two packs (entries of `a` take precedence).
 // Every CGAL parameter function (vertex_point_map, number_of_iterations, visitor, ...) is also
-// reachable through `CGAL::Surface_mesh_correspondence::parameters`.
+// reachable through `CGAL::Surface_mesh_correspondence::parameters`. Every setting of the registry
+// (internal/settings_list.h, see Matching_settings) has its named parameter of the same name.
 
 #ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_PARAMETERS_H
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_PARAMETERS_H
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Surface_mesh_correspondence/internal/settings_list.h>
 
 #include <type_traits>
+#include <utility>
 
 namespace CGAL {
 namespace Surface_mesh_correspondence {
 
-/// The list of the package's named parameters: (tag type, tag value, function name).
-/// Documentation of each parameter is with the functions that read it.
+/// The named parameters that are not settings of the registry: inputs of the functions
+/// (initial maps, landmarks, precomputed data) and parameters of the component functions
+/// (the TRW-S solver, the spectrum, the geodesic distances): (tag type, tag value, function name).
+/// The settings (internal/settings_list.h) get their named parameters from the registry.
 #define CGAL_SMC_NAMED_PARAMETERS(X)                                                     \
+  /* the matching pipeline */                                                            \
+  X(matching_settings_t, matching_settings, matching_settings)                           \
+  X(initial_maps_t, initial_maps, initial_maps_pair)                                     \
+  X(landmarks_t, landmarks, landmarks)                                                   \
   /* TRW-S solver */                                                                     \
   X(relative_tolerance_t, relative_tolerance, relative_tolerance)                        \
   X(initial_labeling_t, initial_labeling, initial_labeling)                              \
-  X(node_index_map_t, node_index_map, node_index_map)                                    \
-  X(use_float_messages_t, use_float_messages, use_float_messages)                        \
-  /* Laplace-Beltrami operator and spectrum */                                           \
-  X(number_of_eigenpairs_t, number_of_eigenpairs, number_of_eigenpairs)                  \
-  X(use_intrinsic_delaunay_t, use_intrinsic_delaunay, use_intrinsic_delaunay)            \
+  /* Laplace-Beltrami spectrum and descriptors */                                        \
   X(eigen_shift_t, eigen_shift, eigen_shift)                                             \
   X(precomputed_spectrum_t, precomputed_spectrum, precomputed_spectrum)                  \
-  /* descriptors */                                                                      \
-  X(number_of_hks_scales_t, number_of_hks_scales, number_of_hks_scales)                  \
-  X(number_of_wks_energies_t, number_of_wks_energies, number_of_wks_energies)            \
-  X(wks_variance_t, wks_variance, wks_variance)                                          \
-  X(shot_radius_t, shot_radius, shot_radius)                                             \
-  X(hks_weight_t, hks_weight, hks_weight)                                                \
-  X(wks_weight_t, wks_weight, wks_weight)                                                \
-  X(shot_weight_t, shot_weight, shot_weight)                                             \
   X(user_descriptor_map_t, user_descriptor_map, user_descriptor_map)                     \
-  X(user_descriptor_weight_t, user_descriptor_weight, user_descriptor_weight)            \
   /* geodesic distances and sampling */                                                  \
-  X(distance_oracle_t, distance_oracle, distance_oracle)                                 \
   X(local_radius_t, local_radius, local_radius)                                          \
-  X(number_of_rings_t, number_of_rings, number_of_rings)                                 \
-  X(number_of_landmarks_t, number_of_landmarks, number_of_landmarks)                     \
   X(seed_vertices_t, seed_vertices, seed_vertices)                                       \
   X(maximum_distance_t, maximum_distance, maximum_distance)                              \
   X(target_vertices_t, target_vertices, target_vertices)                                 \
-  X(geodesic_method_t, geodesic_method, geodesic_method)                                 \
-  /* coupled refinement */                                                               \
-  X(number_of_candidates_t, number_of_candidates, number_of_candidates)                  \
-  X(ring_schedule_t, ring_schedule, ring_schedule)                                       \
-  X(unary_weight_t, unary_weight, unary_weight)                                          \
-  X(use_coupling_t, use_coupling, use_coupling)                                          \
-  X(consistency_weight_t, consistency_weight, consistency_weight)                        \
-  X(number_of_outer_iterations_t, number_of_outer_iterations, number_of_outer_iterations)\
-  X(trws_number_of_iterations_t, trws_number_of_iterations, trws_number_of_iterations)   \
-  X(trws_relative_tolerance_t, trws_relative_tolerance, trws_relative_tolerance)         \
-  X(use_neighbor_matches_t, use_neighbor_matches, use_neighbor_matches)                  \
-  X(pairwise_rings_t, pairwise_rings, pairwise_rings)                                    \
-  X(stop_when_consistency_worsens_t, stop_when_consistency_worsens, stop_when_consistency_worsens) \
-  X(keep_consistent_input_maps_t, keep_consistent_input_maps, keep_consistent_input_maps) \
-  X(refinement_preset_t, refinement_preset, refinement_preset)                        \
-  /* automatic initialisation */                                                         \
-  X(spectral_basis_size_t, spectral_basis_size, spectral_basis_size)                     \
-  X(zoomout_final_size_t, zoomout_final_size, zoomout_final_size)                        \
-  X(zoomout_pass_size_t, zoomout_pass_size, zoomout_pass_size)                           \
-  X(zoomout_step_t, zoomout_step, zoomout_step)                                          \
-  X(zoomout_growth_step_t, zoomout_growth_step, zoomout_growth_step)                     \
-  X(orientation_weight_t, orientation_weight, orientation_weight)                        \
-  X(commutativity_weight_t, commutativity_weight, commutativity_weight)                  \
-  X(landmarks_t, landmarks, landmarks)                                                   \
-  X(number_of_repair_passes_t, number_of_repair_passes, number_of_repair_passes)         \
-  X(tear_threshold_t, tear_threshold, tear_threshold)                                    \
-  X(tear_repair_distortion_tolerance_t, tear_repair_distortion_tolerance,                \
-    tear_repair_distortion_tolerance)                                                    \
-  X(number_of_distortion_repair_passes_t, number_of_distortion_repair_passes,            \
-    number_of_distortion_repair_passes)                                                  \
-  X(compare_with_automatic_maps_t, compare_with_automatic_maps, compare_with_automatic_maps) \
-  X(automatic_maps_comparison_threshold_t, automatic_maps_comparison_threshold,          \
-    automatic_maps_comparison_threshold)
+  X(geodesic_method_t, geodesic_method, geodesic_method)
 
 namespace internal_np {
 #define CGAL_SMC_DECLARE_TAG(X, Y, Z) enum X { Y };
+#define CGAL_SMC_DECLARE_SETTING_TAG(NAME, TYPE, DEFAULT, GIVEN_DEFAULT, RANGE, STAGE, DOC) enum NAME##_t { NAME };
 CGAL_SMC_NAMED_PARAMETERS(CGAL_SMC_DECLARE_TAG)
+CGAL_SMC_SETTINGS(CGAL_SMC_DECLARE_SETTING_TAG)
+#undef CGAL_SMC_DECLARE_SETTING_TAG
 #undef CGAL_SMC_DECLARE_TAG
 } // namespace internal_np
 
@@ -121,7 +85,28 @@ using namespace CGAL::parameters;
         (k, np);                                                                          \
   }
 CGAL_SMC_NAMED_PARAMETERS(CGAL_SMC_DECLARE_FUNCTION)
+#define CGAL_SMC_DECLARE_SETTING_FUNCTION(NAME, TYPE, DEFAULT, GIVEN_DEFAULT, RANGE, STAGE, DOC) \
+  CGAL_SMC_DECLARE_FUNCTION(NAME##_t, NAME, NAME)
+CGAL_SMC_SETTINGS(CGAL_SMC_DECLARE_SETTING_FUNCTION)
+#undef CGAL_SMC_DECLARE_SETTING_FUNCTION
 #undef CGAL_SMC_DECLARE_FUNCTION
+
+/// The maps to start from (match_shapes()): `map_12` from the vertices of the first mesh to
+/// those of the second, `map_21` the other way round (readable property maps, or
+/// Vertex_index_map_vector for prepared shapes).
+template <typename Map12, typename Map21>
+CGAL::Named_function_parameters<std::pair<Map12, Map21>, internal_np::initial_maps_t>
+initial_maps(const Map12& map_12, const Map21& map_21)
+{
+  return initial_maps_pair(std::make_pair(map_12, map_21));
+}
+template <typename Map12, typename Map21, typename T, typename Tag, typename Base>
+CGAL::Named_function_parameters<std::pair<Map12, Map21>, internal_np::initial_maps_t,
+                                CGAL::Named_function_parameters<T, Tag, Base> >
+initial_maps(const Map12& map_12, const Map21& map_21, const CGAL::Named_function_parameters<T, Tag, Base>& np)
+{
+  return initial_maps_pair(std::make_pair(map_12, map_21), np);
+}
 
 namespace internal {
 

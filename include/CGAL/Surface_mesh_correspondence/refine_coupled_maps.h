@@ -11,9 +11,11 @@
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/dijkstra.h>
+#include <CGAL/Surface_mesh_correspondence/internal/map_selection.h>
 #include <CGAL/Surface_mesh_correspondence/internal/neighborhood_search.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/trws.h>
 
@@ -22,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -29,105 +32,61 @@ namespace CGAL {
 namespace Surface_mesh_correspondence {
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// The kind of initial maps the defaults of the coupled refinement are chosen for (the named
-/// parameter `refinement_preset`; every parameter given explicitly overrides its preset value).
-enum class Refinement_preset
-{
-  /// Imperfect maps from another method, e.g. the dataset's WKS maps (the paper's setting): the
-  /// defaults listed with refine_coupled_maps().
-  given_maps,
-  /// Maps from automatic_initial_maps(): consistent by construction (most vertices are exact fixed
-  /// points of the cycles) and within a few rings of their refined positions. Differs from
-  /// given_maps in six settings:
-  ///   - `consistency_weight` 0.5: a lighter cycle term lets the refinement move them further
-  ///     (TOSCA_r, every 8th pair, rings 3, 2, 1: 0.0232 against 0.0239 with 1);
-  ///   - `keep_consistent_input_maps` false: the most consistent refined iterate is returned, not
-  ///     the input maps (the refined iterates are often a little less consistent but more accurate:
-  ///     0.0232 refined against 0.0260 kept);
-  ///   - `stop_when_consistency_worsens` true: with the cycle term their iterates grow more
-  ///     consistent, so the paper's early stop only ends a schedule that stops helping;
-  ///   - `ring_schedule` {4, 3, 2, 1} and `number_of_candidates` 40: a short schedule suffices, and
-  ///     twice the paper's candidates search its rings more finely (all 284 TOSCA_r pairs, refinement
-  ///     of the same automatic maps: 0.0248 against 0.0257 with 20 candidates and rings 3, 2, 1);
-  ///   - `trws_number_of_iterations` 15: the solves start near their optimum (the same 0.0248 as
-  ///     with up to 100 iterations, in half the time).
-  automatic_maps
-};
-
-/// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// Settings of the coupled refinement (see refine_coupled_maps() for their meaning).
+/// Settings of the coupled refinement (see refine_coupled_maps() for their meaning). The defaults
+/// are the registry's for automatic maps (Matching_settings); from() gives those of either kind of
+/// maps.
 struct Refinement_settings
 {
-  int number_of_candidates = 20;            ///< m: labels per source vertex
-  std::vector<int> ring_schedule = {6, 4, 3, 2, 1}; ///< r_j: candidate neighbourhood radius (rings) at outer iteration j
-  double unary_weight = 0.03;               ///< mu: weight of the descriptor term against the geodesic term
+  int number_of_candidates = internal::matching_defaults().number_of_candidates;  ///< m: labels per source vertex
+  /// r_j: candidate neighbourhood radius (rings) at outer iteration j
+  std::vector<int> ring_schedule = internal::matching_defaults().ring_schedule;
+  /// mu: weight of the descriptor term against the geodesic term
+  double unary_weight = internal::matching_defaults().unary_weight;
   /// lambda: weight of the cycle term lambda d_S(i, x_ba(k)) added to the unary cost of label k
   /// of source vertex i (0: the paper's energy; not used without coupling)
-  double consistency_weight = 1;
-  bool use_coupling = true;                 ///< candidates from the inverse map and the cycle term (false: the paper's non-coupled ablation)
-  int number_of_outer_iterations = 0;       ///< 0: the length of the ring schedule
-  int trws_number_of_iterations = 100;      ///< TRW-S iterations per solve
-  double trws_relative_tolerance = 1e-4;    ///< TRW-S stops when the bound's relative change is below this
-  int pairwise_rings = 1;                  ///< pairwise terms between source vertices at most this many rings apart (1: mesh edges, the paper)
-  bool use_neighbor_matches = true;        ///< also seed the candidates with the matches of the source neighbours (propagation)
+  double consistency_weight = internal::matching_defaults().consistency_weight;
+  /// candidates from the inverse map and the cycle term (false: the paper's non-coupled ablation)
+  bool use_coupling = internal::matching_defaults().use_coupling;
+  /// 0: the length of the ring schedule
+  int number_of_outer_iterations = internal::matching_defaults().number_of_outer_iterations;
+  /// TRW-S iterations per solve
+  int trws_number_of_iterations = internal::matching_defaults().trws_number_of_iterations;
+  /// TRW-S stops when the bound's relative change is below this
+  double trws_relative_tolerance = internal::matching_defaults().trws_relative_tolerance;
+  /// pairwise terms between source vertices at most this many rings apart (1: mesh edges, the paper)
+  int pairwise_rings = internal::matching_defaults().pairwise_rings;
+  /// also seed the candidates with the matches of the source neighbours (propagation)
+  bool use_neighbor_matches = internal::matching_defaults().use_neighbor_matches;
   /// The paper's rule, Eq. (4): stop at the first outer iteration that makes the maps less
-  /// consistent. false (the default) runs the whole schedule; either way the most consistent maps
-  /// seen are returned. Stopping early was measured to cost accuracy (see the manual).
-  bool stop_when_consistency_worsens = false;
-  /// Whether the input maps take part in the choice of the most consistent maps. true (the
-  /// default, the paper's rule) returns the input maps unchanged when no refined iterate is more
-  /// consistent; false returns the most consistent refined iterate. Use false for input maps that
-  /// are consistent by construction but less accurate (e.g. automatic_initial_maps(), whose
-  /// coupled ZoomOut makes most vertices exact fixed points of the cycle).
-  bool keep_consistent_input_maps = true;
+  /// consistent. Either way the most consistent refined iterate is returned.
+  bool stop_when_consistency_worsens = internal::matching_defaults().stop_when_consistency_worsens;
 
-  /// The defaults for one kind of initial maps (see Refinement_preset).
-  static Refinement_settings preset(Refinement_preset kind)
+  /// The refinement settings of `m` (resolved for the origin of the maps, see
+  /// Matching_settings::resolved()).
+  static Refinement_settings from(const Matching_settings& m)
   {
     Refinement_settings s;
-    if(kind == Refinement_preset::automatic_maps)
-    {
-      s.consistency_weight = 0.5;
-      s.keep_consistent_input_maps = false;
-      s.stop_when_consistency_worsens = true;
-      s.ring_schedule = {4, 3, 2, 1};
-      s.number_of_candidates = 40;
-      s.trws_number_of_iterations = 15;
-    }
+    s.number_of_candidates = m.number_of_candidates;
+    s.ring_schedule = m.ring_schedule;
+    s.unary_weight = m.unary_weight;
+    s.consistency_weight = m.consistency_weight;
+    s.use_coupling = m.use_coupling;
+    s.number_of_outer_iterations = m.number_of_outer_iterations;
+    s.trws_number_of_iterations = m.trws_number_of_iterations;
+    s.trws_relative_tolerance = m.trws_relative_tolerance;
+    s.pairwise_rings = m.pairwise_rings;
+    s.use_neighbor_matches = m.use_neighbor_matches;
+    s.stop_when_consistency_worsens = m.stop_when_consistency_worsens;
+    s.check();
     return s;
   }
 
-  /// The settings of the named parameters `np`: the values of its preset (`refinement_preset`,
-  /// default Refinement_preset::given_maps), then every parameter given.
+  /// The settings of the named parameters `np` for maps of origin `origin`: the registry's
+  /// defaults for that origin, then every parameter given.
   template <typename NamedParameters>
-  static Refinement_settings from(const NamedParameters& np)
+  static Refinement_settings from(const NamedParameters& np, Map_origin origin)
   {
-    using parameters::choose_parameter;
-    using parameters::get_parameter;
-    Refinement_settings s =
-        preset(choose_parameter(get_parameter(np, internal_np::refinement_preset), Refinement_preset::given_maps));
-    s.number_of_candidates =
-        choose_parameter(get_parameter(np, internal_np::number_of_candidates), s.number_of_candidates);
-    s.ring_schedule = choose_parameter(get_parameter(np, internal_np::ring_schedule), s.ring_schedule);
-    s.unary_weight = choose_parameter(get_parameter(np, internal_np::unary_weight), s.unary_weight);
-    s.consistency_weight =
-        choose_parameter(get_parameter(np, internal_np::consistency_weight), s.consistency_weight);
-    s.use_coupling = choose_parameter(get_parameter(np, internal_np::use_coupling), s.use_coupling);
-    s.number_of_outer_iterations = choose_parameter(get_parameter(np, internal_np::number_of_outer_iterations),
-                                                    s.number_of_outer_iterations);
-    s.trws_number_of_iterations = choose_parameter(get_parameter(np, internal_np::trws_number_of_iterations),
-                                                   s.trws_number_of_iterations);
-    s.trws_relative_tolerance = choose_parameter(get_parameter(np, internal_np::trws_relative_tolerance),
-                                                 s.trws_relative_tolerance);
-    s.use_neighbor_matches =
-        choose_parameter(get_parameter(np, internal_np::use_neighbor_matches), s.use_neighbor_matches);
-    s.pairwise_rings = choose_parameter(get_parameter(np, internal_np::pairwise_rings), s.pairwise_rings);
-    s.stop_when_consistency_worsens = choose_parameter(
-        get_parameter(np, internal_np::stop_when_consistency_worsens), s.stop_when_consistency_worsens);
-    s.keep_consistent_input_maps = choose_parameter(get_parameter(np, internal_np::keep_consistent_input_maps),
-                                                    s.keep_consistent_input_maps);
-    s.check();
-    return s;
+    return from(Matching_settings::from(np).resolved(origin));
   }
 
   /// Throws Invalid_parameter_error naming the first invalid setting.
@@ -227,6 +186,9 @@ struct Coupled_refinement_result
   double data_preparation_seconds = 0;         ///< Table 1: candidates, unary and pairwise terms
   double trws_seconds = 0;                     ///< Table 1: TRW-S solves
   double total_seconds = 0;
+  /// Where the refined maps replaced their input (the public refine_coupled_maps() functions;
+  /// match_shapes() reports it in its own result).
+  Selection_result selection;
 };
 
 namespace internal {
@@ -545,7 +507,7 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
   Coupled_refinement_result result;
   result.inconsistent_vertices_before = inconsistency(x12, x21);
   std::size_t best_c = result.inconsistent_vertices_before;
-  bool have_best = settings.keep_consistent_input_maps;
+  bool have_best = false;  // the most consistent refined iterate is returned (the selection compares it with the input)
   std::vector<int> best12 = x12, best21 = x21;
   Refinement_workspace<ConcurrencyTag> w12, w21;
   bool stop = false;
@@ -599,12 +561,39 @@ Coupled_refinement_result refine_coupled_maps(const Shape_data& M1, const Shape_
   return result;
 }
 
+/// The vertex indices of a vertex-to-vertex property map: entry i is the index (in
+/// `target_index`) of the vertex of `target` that `map` assigns to vertex i of `source_shape`.
+/// Throws Invalid_map_error naming `what` and the vertex when an entry is not a vertex of
+/// `target` (the null vertex, or a descriptor of another mesh); the entries are looked up in a
+/// hash set of the target's vertices, never dereferenced.
+template <typename Index, typename Map, typename TargetMesh, typename Shape, typename TargetIndexMap>
+std::vector<Index> vertex_map_indices(const Map& map, const TargetMesh& target, const Shape& source_shape,
+                                      const TargetIndexMap& target_index, const std::string& what,
+                                      const std::string& target_name)
+{
+  typedef typename boost::graph_traits<TargetMesh>::vertex_descriptor Vertex;
+  std::unordered_set<Vertex> target_vertices;
+  target_vertices.reserve(std::size_t(num_vertices(target)));
+  for(Vertex v : vertices(target)) target_vertices.insert(v);
+  std::vector<Index> out(source_shape.number_of_vertices());
+  for(std::size_t i = 0; i < out.size(); ++i)
+  {
+    const Vertex t = get(map, source_shape.vertex(i));
+    if(target_vertices.count(t) == 0)
+      throw Invalid_map_error(what + ": vertex " + std::to_string(i) + " is mapped to a vertex that is not in " +
+                              target_name);
+    out[i] = static_cast<Index>(get(target_index, t));
+  }
+  return out;
+}
+
 } // namespace internal
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Coupled refinement of two maps between prepared shapes (index-based form of
-/// refine_coupled_maps()). `map_12[i]` is the vertex of `shape_2` matched to vertex i of
-/// `shape_1`, `map_21` the other way round; both are refined in place.
+/// refine_coupled_maps()), followed by the selection of where the refined maps replace their
+/// input. `map_12[i]` is the vertex of `shape_2` matched to vertex i of `shape_1`, `map_21` the
+/// other way round; both are refined in place.
 /// \throws Invalid_map_error when a map does not fit the shapes, Invalid_parameter_error
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1, typename Tag1,
           typename TriangleMesh2, typename Tag2, typename NamedParameters = parameters::Default_named_parameters>
@@ -615,7 +604,8 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 {
   check_vertex_map(map_12, shape_1.number_of_vertices(), shape_2.number_of_vertices(), "map 1->2");
   check_vertex_map(map_21, shape_2.number_of_vertices(), shape_1.number_of_vertices(), "map 2->1");
-  const Refinement_settings settings = Refinement_settings::from(np);
+  const Matching_settings all = Matching_settings::from(np);
+  const Refinement_settings settings = Refinement_settings::from(all.resolved(Map_origin::given));
   // The visitor is used through a reference when given as std::ref(v), else as a copy.
   typedef typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::visitor_t, NamedParameters,
                                                              Default_refinement_visitor>::reference Visitor_reference;
@@ -623,8 +613,11 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
   Visitor_reference visitor = parameters::choose_parameter(
       parameters::get_parameter_reference(np, CGAL::internal_np::visitor), default_visitor);
   std::vector<int> x12 = internal::to_int_map(map_12), x21 = internal::to_int_map(map_21);
+  const std::vector<int> input12 = x12, input21 = x21;
   Coupled_refinement_result r =
       internal::refine_coupled_maps<ConcurrencyTag>(shape_1.data(), shape_2.data(), x12, x21, settings, visitor);
+  r.selection = internal::select_refined_maps<ConcurrencyTag>(shape_1.data(), shape_2.data(), input12, input21, x12,
+                                                              x21, internal::Selection_settings::from(all));
   map_12.assign(x12.begin(), x12.end());
   map_21.assign(x21.begin(), x21.end());
   return r;
@@ -645,41 +638,26 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 /// \f$ x(i) \f$ and of the inverse of the opposite map \f$ \tilde x(i) \f$ (both always kept).
 /// Distances are geodesic, divided by \f$ \sqrt{\mathrm{area}} \f$ of each shape, and the
 /// descriptor stack is scale-invariant, so the parameters do not depend on units. The iteration
-/// runs the ring schedule and returns the most consistent maps by Eq. (4) (the number of vertices
-/// that are not fixed points of the cycles); the paper's early stop is an option.
+/// runs the ring schedule and keeps the most consistent refined iterate by Eq. (4) (the number of
+/// vertices that are not fixed points of the cycles; the paper's early stop is an option); then
+/// the refined maps replace their input everywhere when they are more consistent, else only
+/// where they distort mid-range geodesic distances less (setting `refinement_selection`). For
+/// the whole pipeline from two meshes (automatic or given initial maps), use match_shapes().
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (preprocessing, candidate
-///   selection and the MRF terms in parallel; TRW-S itself is sequential)
+///   selection, the MRF terms and the TRW-S passes in parallel, with the same result)
 /// \tparam TriangleMesh1, TriangleMesh2 models of `FaceListGraph` whose faces are triangles
 /// \tparam VertexVertexMap12 a model of `ReadWritePropertyMap` from the vertices of `tm1` to those
 ///   of `tm2` (read: initial map; written: refined map); same for VertexVertexMap21
-/// \param np optional algorithm parameters (the defaults given are those of the default preset):
-///   - `refinement_preset` (Refinement_preset, default given_maps): the kind of initial maps the
-///     other defaults are chosen for; Refinement_preset::automatic_maps for the maps of
-///     automatic_initial_maps() (six settings differ, see Refinement_preset); parameters given
-///     explicitly override the preset;
-///   - `number_of_candidates` (int, default 20): m, labels per source vertex;
-///   - `ring_schedule` (std::vector<int>, default {6, 4, 3, 2, 1}; the paper used {6, 4, 3}):
-///     candidate radius per outer iteration;
-///   - `unary_weight` (double, default 0.03): \f$\mu\f$;
-///   - `consistency_weight` (double, default 1): \f$\lambda\f$, weight of the cycle term
-///     \f$\lambda\, d_S(i, x_{ba}(k))\f$ added to the unary cost of candidate k of source vertex i
-///     (distance relative to sqrt(area), x_ba the current opposite map; 0: the paper's energy;
-///     not used without coupling);
-///   - `use_neighbor_matches` (bool, default true): the matches of the source neighbours are
-///     candidates too (propagation; false: the paper's candidate sets);
-///   - `pairwise_rings` (int, default 1): pairwise terms between source vertices up to this many
-///     rings apart (1: the mesh edges, the paper);
-///   - `stop_when_consistency_worsens` (bool, default false): the paper's early stop, Eq. (4);
-///   - `keep_consistent_input_maps` (bool, default true): the input maps are returned unchanged
-///     when no refined iterate is more consistent (false: the most consistent refined iterate);
-///   - `use_coupling` (bool, default true): false gives the paper's non-coupled ablation;
-///   - `number_of_outer_iterations` (int, default: length of the ring schedule, whose last value
-///     is repeated beyond its end);
-///   - `trws_number_of_iterations` (int, default 100), `trws_relative_tolerance` (double, 1e-4);
-///   - `visitor` (default Default_refinement_visitor): see Default_refinement_visitor;
-///   - shape preparation parameters (see Correspondence_shape): descriptor weights and settings,
-///     `number_of_eigenpairs`, `distance_oracle`, `number_of_rings`, `number_of_landmarks`.
+/// \param np optional named parameters: the settings of stages `preparation`, `refinement` and
+///   `selection` of the registry (see Matching_settings and the settings table of the manual),
+///   with the registry's defaults for given maps: `number_of_candidates` (m, 20), `ring_schedule`
+///   ({6, 4, 3, 2, 1}; the paper used {6, 4, 3}), `unary_weight` (mu, 0.03), `consistency_weight`
+///   (lambda, 1; 0: the paper's energy), `use_coupling` (false: the paper's non-coupled ablation),
+///   `use_neighbor_matches`, `pairwise_rings`, `stop_when_consistency_worsens`,
+///   `number_of_outer_iterations`, `trws_number_of_iterations` (100), `trws_relative_tolerance`,
+///   `refinement_selection`, `selection_radius`, `selection_samples`, `selection_smoothing`;
+///   `matching_settings`; `visitor` (default Default_refinement_visitor).
 /// \param np1, np2 `vertex_point_map` and `vertex_index_map` of each mesh
 /// \pre both meshes are connected manifold triangle meshes
 /// \throws Invalid_mesh_error, Invalid_map_error (a map entry that is not a vertex of the other
@@ -696,26 +674,15 @@ Coupled_refinement_result refine_coupled_maps(const TriangleMesh1& tm1, const Tr
                                               const NamedParameters2& np2 = parameters::default_values())
 {
   const auto start = std::chrono::steady_clock::now();
-  const Correspondence_shape<TriangleMesh1, ConcurrencyTag> s1(tm1, parameters::combine(np1, np), "mesh 1");
-  const Correspondence_shape<TriangleMesh2, ConcurrencyTag> s2(tm2, parameters::combine(np2, np), "mesh 2");
+  const Correspondence_shape<TriangleMesh1, ConcurrencyTag> s1(tm1, parameters::combine(np1, np),
+                                                               internal::Shape_preparation{false}, "mesh 1");
+  const Correspondence_shape<TriangleMesh2, ConcurrencyTag> s2(tm2, parameters::combine(np2, np),
+                                                               internal::Shape_preparation{false}, "mesh 2");
   const double preprocessing = internal::seconds_since(start);
   auto vim1 = CGAL::get_initialized_vertex_index_map(tm1, np1);
   auto vim2 = CGAL::get_initialized_vertex_index_map(tm2, np2);
-  Vertex_index_map_vector m12(s1.number_of_vertices()), m21(s2.number_of_vertices());
-  for(std::size_t i = 0; i < m12.size(); ++i)
-  {
-    const auto t = get(map_12, s1.vertex(i));
-    if(!is_valid_vertex_descriptor(t, tm2))
-      throw Invalid_map_error("map 1->2: vertex " + std::to_string(i) + " is mapped to a vertex that is not in mesh 2");
-    m12[i] = static_cast<std::size_t>(get(vim2, t));
-  }
-  for(std::size_t k = 0; k < m21.size(); ++k)
-  {
-    const auto t = get(map_21, s2.vertex(k));
-    if(!is_valid_vertex_descriptor(t, tm1))
-      throw Invalid_map_error("map 2->1: vertex " + std::to_string(k) + " is mapped to a vertex that is not in mesh 1");
-    m21[k] = static_cast<std::size_t>(get(vim1, t));
-  }
+  Vertex_index_map_vector m12 = internal::vertex_map_indices<std::size_t>(map_12, tm2, s1, vim2, "map 1->2", "mesh 2");
+  Vertex_index_map_vector m21 = internal::vertex_map_indices<std::size_t>(map_21, tm1, s2, vim1, "map 2->1", "mesh 1");
   Coupled_refinement_result r = refine_coupled_maps<ConcurrencyTag>(s1, s2, m12, m21, np);
   for(std::size_t i = 0; i < m12.size(); ++i) put(map_12, s1.vertex(i), s2.vertex(m12[i]));
   for(std::size_t k = 0; k < m21.size(); ++k) put(map_21, s2.vertex(k), s1.vertex(m21[k]));

@@ -11,6 +11,7 @@
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 #include <CGAL/Surface_mesh_correspondence/internal/shot_impl.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/tags.h>
@@ -40,7 +41,7 @@ Shot_options shot_options_from(const NamedParameters& np)
   using parameters::get_parameter;
   Shot_options options;
   options.relative_radius =
-      choose_parameter(get_parameter(np, internal_np::shot_radius), default_shot_radius);
+      choose_parameter(get_parameter(np, internal_np::shot_radius), internal::matching_defaults().shot_radius);
   check_shot_options(options);
   return options;
 }

@@ -10,6 +10,7 @@
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/laplacian.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 
 #include <Eigen/Core>
@@ -274,7 +275,6 @@ inline void laplace_beltrami_eigenpairs(const Eigen::SparseMatrix<double>& stiff
 }
 
 /// Default number of eigenpairs of Laplace_beltrami_spectrum.
-constexpr int default_number_of_eigenpairs = 100;
 
 } // namespace internal
 
@@ -403,7 +403,7 @@ private:
     const bool k_given =
         !parameters::is_default_parameter<NamedParameters, internal_np::number_of_eigenpairs_t>::value;
     int k = choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs),
-                             internal::default_number_of_eigenpairs);
+                             internal::matching_defaults().number_of_eigenpairs);
     if(!k_given) k = std::min(k, n - 1);
     if(k < 1 || k >= n)
       throw Invalid_parameter_error("Laplace-Beltrami spectrum: number_of_eigenpairs = " +

@@ -9,6 +9,7 @@
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/spectral_signature.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
 
@@ -35,8 +36,6 @@ struct Wave_kernel_signature_energies
 
 namespace internal {
 
-constexpr int default_number_of_wks_energies = 100;
-constexpr double default_wks_variance = 7.0;
 
 /// The weights W(j, c) = exp(-(e_c - log lambda_j)^2 / (2 sigma^2)), 0 for lambda_j <= 0.
 inline Eigen::MatrixXd wave_kernel_weights(const Eigen::VectorXd& eigenvalues,
@@ -113,9 +112,9 @@ wave_kernel_signature_energies(const Laplace_beltrami_spectrum& spectrum,
   using parameters::choose_parameter;
   using parameters::get_parameter;
   const int d = choose_parameter(get_parameter(np, internal_np::number_of_wks_energies),
-                                 internal::default_number_of_wks_energies);
+                                 internal::matching_defaults().number_of_wks_energies);
   const double variance = choose_parameter(get_parameter(np, internal_np::wks_variance),
-                                           internal::default_wks_variance);
+                                           internal::matching_defaults().wks_variance);
   if(d < 1)
     throw Invalid_parameter_error("wave kernel signature: number_of_wks_energies = " +
                                   std::to_string(d) + " must be at least 1");

@@ -530,11 +530,13 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   // sample vertices.
   std::vector<Initialization_candidate> candidates = pass_candidates(s, p);
   fit_pass_candidates<ConcurrencyTag>(s, p, candidates);
+  s.notify_step();
   if(s.select_by_distortion)
   {
     add_inverse_candidates<ConcurrencyTag>(s, p, candidates);
     score_candidates_by_distortion<ConcurrencyTag>(s, p, candidates);
   }
+  s.notify_step();
   const std::pair<std::size_t, std::size_t> best = best_candidates(candidates, !p.landmarks.empty());
   const std::size_t best12 = best.first, best21 = best.second;
   if(s.verbose) print_candidates(candidates);
@@ -571,6 +573,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   result.zoomout_seconds = seconds_since(zoom_start);
   result.final_basis_size = zs.final_size;
   set_initial_maps(*p.m1, *p.m2, t12, t21, C12, C21, map_12, map_21, result);
+  s.notify_step();
   result.total_seconds = seconds_since(start);
   if(s.verbose)
     std::cerr << "automatic_initial_maps: ZoomOut to " << zs.final_size << " in " << result.zoomout_seconds

@@ -87,6 +87,51 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
   return r;
 }
 
+/// The first step of repair_given_maps(): the orientation of the given maps, then their tear
+/// repair and distortion repair (unless `repair` is false).
+template <typename ConcurrencyTag>
+Automatic_initialization_result repair_given_maps_tears(const Initialization_shape& shape1,
+                                                        const Initialization_shape& shape2,
+                                                        const Initialization_settings& s,
+                                                        std::vector<std::size_t>& map_12,
+                                                        std::vector<std::size_t>& map_21, bool repair,
+                                                        Initialization_pass_cache& cache)
+{
+  const Indexed_mesh& m1 = *shape1.mesh;
+  const Indexed_mesh& m2 = *shape2.mesh;
+  const std::vector<int> t12(map_12.begin(), map_12.end()), t21(map_21.begin(), map_21.end());
+  Automatic_initialization_result given;
+  given.orientation_agreement = 0.5 * (orientation_agreement(m1, m2, vertex_normals(m2), t12) +
+                                       orientation_agreement(m2, m1, vertex_normals(m1), t21));
+  given.orientation_sign = given.orientation_agreement >= 0.5 ? 1 : -1;
+  Automatic_initialization_result r = given;
+  if(repair)
+  {
+    r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
+    if(s.distortion_repair_passes > 0)
+      r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
+  }
+  return r;
+}
+
+/// The second step of repair_given_maps(): with `compare_with_automatic_maps`, the comparison
+/// with the automatic maps (only the kept maps grow to the final size), else the growth of the
+/// maps of a kept repair pass (the given maps have no functional maps and stay as they are).
+template <typename ConcurrencyTag>
+Automatic_initialization_result compare_or_grow_given_maps(const Initialization_shape& shape1,
+                                                           const Initialization_shape& shape2,
+                                                           const Initialization_settings& s,
+                                                           std::vector<std::size_t>& map_12,
+                                                           std::vector<std::size_t>& map_21,
+                                                           Automatic_initialization_result r,
+                                                           Initialization_pass_cache& cache)
+{
+  if(s.compare_with_automatic_maps)
+    return compare_given_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+  grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+  return r;
+}
+
 /// repair_torn_maps() and repair_distorted_maps() for maps computed elsewhere (unless `repair` is
 /// false), then, with `compare_with_automatic_maps`, the comparison with the automatic maps: their
 /// orientation (relative to the embeddings) is read from the orientation agreement of their
@@ -97,27 +142,10 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
                                                   std::vector<std::size_t>& map_21, bool repair = true)
 {
   const auto start = std::chrono::steady_clock::now();
-  const Indexed_mesh& m1 = *shape1.mesh;
-  const Indexed_mesh& m2 = *shape2.mesh;
-  const std::vector<int> t12(map_12.begin(), map_12.end()), t21(map_21.begin(), map_21.end());
-  Automatic_initialization_result given;
-  given.orientation_agreement = 0.5 * (orientation_agreement(m1, m2, vertex_normals(m2), t12) +
-                                       orientation_agreement(m2, m1, vertex_normals(m1), t21));
-  given.orientation_sign = given.orientation_agreement >= 0.5 ? 1 : -1;
   Initialization_pass_cache cache;
-  Automatic_initialization_result r = given;
-  if(repair)
-  {
-    r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, given, &cache);
-    if(s.distortion_repair_passes > 0)
-      r = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, &cache);
-  }
-  // Maps of a kept repair pass grow to the final size (the given maps have no functional maps and
-  // stay as they are); with the comparison, only the kept maps grow.
-  if(s.compare_with_automatic_maps)
-    r = compare_given_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
-  else
-    grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+  Automatic_initialization_result r =
+      repair_given_maps_tears<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, repair, cache);
+  r = compare_or_grow_given_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, cache);
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/functional_map.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -30,61 +32,54 @@ namespace Surface_mesh_correspondence {
 namespace internal {
 
 /// One configuration of the functional map fit tried by the initialisation.
-struct Fit_candidate
-{
-  int basis_size;               ///< k0
-  double orientation_weight;    ///< w_o
-  double commutativity_weight;  ///< w_c
-};
+typedef Functional_map_fit Fit_candidate;
 
-/// Every setting of the automatic initialisation, with its default.
+/// Every setting of the automatic initialisation. Those of the registry (their defaults are the
+/// registry's, see initialization_settings()) and the algorithm's fixed constants.
 struct Initialization_settings
 {
   // Basis sizes.
   /// The fit configurations tried (each in both directions); the best after a short ZoomOut is
-  /// kept. The named parameters spectral_basis_size, orientation_weight and commutativity_weight
-  /// replace the list by a single configuration.
-  /// Candidates larger than zoomout_final_size are skipped.
-  std::vector<Fit_candidate> candidates{{20, 0.03, 0.3}, {15, 0.03, 0.3}, {20, 0.1, 1.0},
-                                        {30, 0.03, 0.3}, {40, 0.1, 1.0},  {60, 0.1, 1.0}};
-  int selection_size = 40;               ///< basis size at which candidates are compared
+  /// kept. Candidates larger than zoomout_final_size are skipped.
+  std::vector<Fit_candidate> candidates = matching_defaults().initialization_fits;
+  int selection_size = matching_defaults().fit_selection_basis_size;               ///< basis size at which candidates are compared
   /// How candidates are compared: by the geodesic distortion of their sample maps (true) or by
   /// the weighted descriptor distance between matched samples (false).
   bool select_by_distortion = true;
   /// Farthest-point samples whose pairwise geodesic distances measure the distortion.
   int distortion_samples = 100;
-  int zoomout_final_size = 200;          ///< k_final
+  int zoomout_final_size = matching_defaults().zoomout_final_size;          ///< k_final
   /// Basis size at which every pass (the first one and each repair pass) ends its ZoomOut: the
   /// tears, the distortions and the choice between passes are measured there, and the maps that
   /// are kept then grow on to zoomout_final_size (grow_initial_maps()).
-  int zoomout_pass_size = 120;
-  int zoomout_step = 5;                  ///< ZoomOut basis growth per iteration
+  int zoomout_pass_size = matching_defaults().zoomout_pass_size;
+  int zoomout_step = matching_defaults().zoomout_step;                  ///< ZoomOut basis growth per iteration
   /// ZoomOut basis growth per iteration from zoomout_pass_size to zoomout_final_size
   /// (grow_initial_maps()). Coarser than zoomout_step: the growth costs most at these sizes
   /// (TOSCA_r, every 8th pair: steps of 5, 10, 20 give 0.0260, 0.0263, 0.0266).
-  int zoomout_growth_step = 10;
-  int number_of_eigenpairs = 0;          ///< eigenpairs computed (0: zoomout_final_size)
+  int zoomout_growth_step = matching_defaults().zoomout_growth_step;
+  int number_of_eigenpairs = matching_defaults().initialization_number_of_eigenpairs;          ///< eigenpairs computed (0: zoomout_final_size)
   // Descriptors.
-  int number_of_wks_energies = 100;
-  double wks_variance = 7.0;
-  int number_of_hks_scales = 16;
-  double wks_weight = 1.0;
-  double hks_weight = 0.0;
+  int number_of_wks_energies = matching_defaults().initialization_number_of_wks_energies;
+  double wks_variance = matching_defaults().initialization_wks_variance;
+  int number_of_hks_scales = matching_defaults().initialization_number_of_hks_scales;
+  double wks_weight = matching_defaults().initialization_wks_weight;
+  double hks_weight = matching_defaults().initialization_hks_weight;
   /// Weight of the orientation-sensitive descriptors <n, grad f x grad g> (0: none).
-  double signed_descriptor_weight = 1.0;
+  double signed_descriptor_weight = matching_defaults().signed_descriptor_weight;
   /// They are smoothed by projection on this many eigenfunctions (0: not smoothed).
-  int signed_descriptor_smoothing = 60;
+  int signed_descriptor_smoothing = matching_defaults().signed_descriptor_smoothing;
   /// Number of descriptors (evenly spread over the columns) that get multiplication and
   /// orientation operators.
-  int number_of_operator_descriptors = 20;
+  int number_of_operator_descriptors = matching_defaults().number_of_operator_descriptors;
   bool normalize_orientation_gradients = true;
   // Functional map energy (orientation and commutativity weights come from the candidates).
   Functional_map_weights weights;
-  bool procrustes = true;                ///< replace each fitted map by the nearest orthogonal one
+  bool procrustes = matching_defaults().use_procrustes;                ///< replace each fitted map by the nearest orthogonal one
   // ZoomOut.
-  bool coupled_zoomout = true;
-  double zoomout_bijectivity_weight = 1.0;
-  int zoomout_number_of_samples = 1000;  ///< 0: all vertices in every iteration
+  bool coupled_zoomout = matching_defaults().use_coupled_zoomout;
+  double zoomout_bijectivity_weight = matching_defaults().zoomout_bijectivity_weight;
+  int zoomout_number_of_samples = matching_defaults().zoomout_number_of_samples;  ///< 0: all vertices in every iteration
   /// Weight of the descriptor coordinates appended to the ZoomOut embeddings (0: none), and its
   /// multiplier at the last step.
   double zoomout_descriptor_weight = 0.0;
@@ -103,26 +98,26 @@ struct Initialization_settings
   /// Repair passes at most: after each set of maps whose tears cut off more than
   /// tear_min_fraction of a mesh, the maps are recomputed with landmarks sampled in the core (the
   /// largest region between the tears) of both maps, and kept when they are less torn.
-  int tear_repair_passes = 2;
+  int tear_repair_passes = matching_defaults().number_of_repair_passes;
   /// A source edge is torn when its images are at least this far apart (relative to the square
   /// root of the target's area; at least four mean edge lengths).
-  double tear_threshold = 0.06;
-  double tear_min_fraction = 0.01;
+  double tear_threshold = matching_defaults().tear_threshold;
+  double tear_min_fraction = matching_defaults().tear_area_fraction;
   /// A tear repair pass is kept only when its maps also distort the geodesic distances of the
   /// distortion samples (pair_distortion()) at most this fraction more than the maps they replace
   /// (negative: no check). Landmarks from the core of a map torn over half a mesh can pull the
   /// repair into an untorn but mirrored map (TOSCA_r michael19 - michael8: 0.067 -> 0.30, its
   /// distortion +7%).
-  double tear_repair_distortion_tolerance = 0.05;
+  double tear_repair_distortion_tolerance = matching_defaults().tear_repair_distortion_tolerance;
   /// Landmarks sampled in the core of each map by a repair pass.
-  int tear_repair_landmarks = 30;
+  int tear_repair_landmarks = matching_defaults().number_of_tear_repair_landmarks;
   // Distortion repair.
   /// Distortion repair passes at most (0, the default: none; each pass costs about as much as the
   /// first one): after the tear repair, the maps are recomputed with
   /// landmarks from their isometric core (the largest set of samples whose pairwise geodesic
   /// distances the map preserves, see distortion_core()), with all the fit configurations of the
   /// first pass, and kept when they distort the sample distances less (distortion_repair_gain).
-  int distortion_repair_passes = 0;
+  int distortion_repair_passes = matching_defaults().number_of_distortion_repair_passes;
   /// Two samples agree when the map changes their geodesic distance by less than this (relative to
   /// the square root of the areas)...
   double distortion_core_tolerance = 0.04;
@@ -143,69 +138,81 @@ struct Initialization_settings
   std::vector<Fit_candidate> repair_candidates{{20, 0.03, 0.3}, {40, 0.1, 1.0}};
   /// repair_given_maps() only: after the repairs, the given maps compete with the automatic maps
   /// of the pair (automatic_initial_maps() run on the same shapes); the pair of maps whose sample
-  /// maps distort geodesic distances less is kept.
+  /// maps distort geodesic distances less is kept. Set by the callers (match_shapes() from the
+  /// setting of the same name).
   bool compare_with_automatic_maps = false;
   /// ... only when the given maps' sample distortion is above this (0: always). Maps that preserve
-  /// the sample distances well are kept without the cost of the automatic initialisation. The
-  /// default 0.035 skips it on 77 of the 284 TOSCA_r pairs (repaired WKS maps), which then take
-  /// about half the time; mean error 0.0247 instead of 0.0241 (benchmark/README.md).
-  double automatic_maps_comparison_threshold = 0.035;
+  /// the sample distances well are kept without the cost of the automatic initialisation (on 77 of
+  /// the 284 TOSCA_r pairs from the dataset's WKS maps, which then take about half the time).
+  double automatic_maps_comparison_threshold = matching_defaults().automatic_maps_comparison_threshold;
   bool verbose = false;
+  /// Called on the calling thread after each step of a pass (the fits, their scores, the ZoomOut)
+  /// and after the growth to the final size: the progress of match_shapes(), whose stop request
+  /// it throws.
+  std::function<void()> step_done;
+  void notify_step() const
+  {
+    if(step_done) step_done();
+  }
 };
 
-/// Reads the named parameters of automatic_initial_maps() into settings.
-template <typename NamedParameters>
-Initialization_settings initialization_settings(const NamedParameters& np)
+/// The settings of the automatic initialisation in `m` (those of the registry that stage
+/// initialization reads; compare_with_automatic_maps stays false).
+inline Initialization_settings initialization_settings(const Matching_settings& m)
 {
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
-  using parameters::is_default_parameter;
   Initialization_settings s;
-  s.zoomout_final_size = choose_parameter(get_parameter(np, internal_np::zoomout_final_size),
-                                          s.zoomout_final_size);
-  s.zoomout_pass_size = choose_parameter(get_parameter(np, internal_np::zoomout_pass_size), s.zoomout_pass_size);
-  s.zoomout_step = choose_parameter(get_parameter(np, internal_np::zoomout_step), s.zoomout_step);
-  s.zoomout_growth_step = choose_parameter(get_parameter(np, internal_np::zoomout_growth_step), s.zoomout_growth_step);
-  s.number_of_eigenpairs = choose_parameter(get_parameter(np, internal_np::number_of_eigenpairs),
-                                            s.number_of_eigenpairs);
-  s.number_of_wks_energies = choose_parameter(get_parameter(np, internal_np::number_of_wks_energies),
-                                              s.number_of_wks_energies);
-  s.wks_variance = choose_parameter(get_parameter(np, internal_np::wks_variance), s.wks_variance);
-  s.number_of_hks_scales = choose_parameter(get_parameter(np, internal_np::number_of_hks_scales),
-                                            s.number_of_hks_scales);
-  s.wks_weight = choose_parameter(get_parameter(np, internal_np::wks_weight), s.wks_weight);
-  s.hks_weight = choose_parameter(get_parameter(np, internal_np::hks_weight), s.hks_weight);
-  if(!is_default_parameter<NamedParameters, internal_np::spectral_basis_size_t>::value ||
-     !is_default_parameter<NamedParameters, internal_np::orientation_weight_t>::value ||
-     !is_default_parameter<NamedParameters, internal_np::commutativity_weight_t>::value)
-  {
-    Fit_candidate c = s.candidates.front();
-    c.basis_size = choose_parameter(get_parameter(np, internal_np::spectral_basis_size), c.basis_size);
-    c.orientation_weight = choose_parameter(get_parameter(np, internal_np::orientation_weight),
-                                            c.orientation_weight);
-    c.commutativity_weight = choose_parameter(get_parameter(np, internal_np::commutativity_weight),
-                                              c.commutativity_weight);
-    s.candidates.assign(1, c);
-  }
-  s.tear_repair_passes = choose_parameter(get_parameter(np, internal_np::number_of_repair_passes),
-                                          s.tear_repair_passes);
-  s.tear_threshold = choose_parameter(get_parameter(np, internal_np::tear_threshold), s.tear_threshold);
-  s.tear_repair_distortion_tolerance = choose_parameter(
-      get_parameter(np, internal_np::tear_repair_distortion_tolerance), s.tear_repair_distortion_tolerance);
-  s.distortion_repair_passes = choose_parameter(
-      get_parameter(np, internal_np::number_of_distortion_repair_passes), s.distortion_repair_passes);
-  s.compare_with_automatic_maps = choose_parameter(get_parameter(np, internal_np::compare_with_automatic_maps),
-                                                   s.compare_with_automatic_maps);
-  s.automatic_maps_comparison_threshold = choose_parameter(
-      get_parameter(np, internal_np::automatic_maps_comparison_threshold), s.automatic_maps_comparison_threshold);
-  s.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), s.verbose);
-  const auto& landmarks = get_parameter(np, internal_np::landmarks);
+  s.candidates = m.initialization_fits;
+  s.selection_size = m.fit_selection_basis_size;
+  s.zoomout_final_size = m.zoomout_final_size;
+  s.zoomout_pass_size = m.zoomout_pass_size;
+  s.zoomout_step = m.zoomout_step;
+  s.zoomout_growth_step = m.zoomout_growth_step;
+  s.zoomout_number_of_samples = m.zoomout_number_of_samples;
+  s.coupled_zoomout = m.use_coupled_zoomout;
+  s.zoomout_bijectivity_weight = m.zoomout_bijectivity_weight;
+  s.procrustes = m.use_procrustes;
+  s.number_of_eigenpairs = m.initialization_number_of_eigenpairs;
+  s.wks_weight = m.initialization_wks_weight;
+  s.hks_weight = m.initialization_hks_weight;
+  s.number_of_wks_energies = m.initialization_number_of_wks_energies;
+  s.wks_variance = m.initialization_wks_variance;
+  s.number_of_hks_scales = m.initialization_number_of_hks_scales;
+  s.signed_descriptor_weight = m.signed_descriptor_weight;
+  s.signed_descriptor_smoothing = m.signed_descriptor_smoothing;
+  s.number_of_operator_descriptors = m.number_of_operator_descriptors;
+  s.tear_repair_passes = m.number_of_repair_passes;
+  s.distortion_repair_passes = m.number_of_distortion_repair_passes;
+  s.tear_threshold = m.tear_threshold;
+  s.tear_min_fraction = m.tear_area_fraction;
+  s.tear_repair_distortion_tolerance = m.tear_repair_distortion_tolerance;
+  s.tear_repair_landmarks = m.number_of_tear_repair_landmarks;
+  s.automatic_maps_comparison_threshold = m.automatic_maps_comparison_threshold;
+  return s;
+}
+
+/// The landmarks of the named parameter `landmarks` (pairs of vertex indices), if given.
+template <typename NamedParameters>
+std::vector<std::pair<std::size_t, std::size_t> > landmarks_parameter(const NamedParameters& np)
+{
+  std::vector<std::pair<std::size_t, std::size_t> > out;
+  const auto& landmarks = parameters::get_parameter(np, internal_np::landmarks);
   if constexpr(!std::is_same<typename std::decay<decltype(landmarks)>::type,
                              CGAL::internal_np::Param_not_found>::value)
   {
     for(const auto& l : landmarks)
-      s.landmarks.emplace_back(static_cast<std::size_t>(l.first), static_cast<std::size_t>(l.second));
+      out.emplace_back(static_cast<std::size_t>(l.first), static_cast<std::size_t>(l.second));
   }
+  return out;
+}
+
+/// Reads the named parameters of automatic_initial_maps() into settings: the registry's settings
+/// (Matching_settings::from()), the landmarks and `verbose`.
+template <typename NamedParameters>
+Initialization_settings initialization_settings(const NamedParameters& np)
+{
+  Initialization_settings s = initialization_settings(Matching_settings::from(np));
+  s.verbose = parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::verbose), s.verbose);
+  s.landmarks = landmarks_parameter(np);
   return s;
 }
 
@@ -228,17 +235,17 @@ inline void check_initialization_settings(const Initialization_settings& s)
   for(const Fit_candidate& c : s.candidates)
   {
     if(c.basis_size < 2)
-      fail("spectral_basis_size = " + std::to_string(c.basis_size) + " must be at least 2");
+      fail("initialization_fits: a basis size of " + std::to_string(c.basis_size) + " (at least 2)");
     if(!(c.orientation_weight >= 0) || !(c.commutativity_weight >= 0) || !std::isfinite(c.orientation_weight) ||
        !std::isfinite(c.commutativity_weight))
-      fail("orientation_weight and commutativity_weight must be finite and non-negative");
+      fail("initialization_fits: the orientation and commutativity weights must be finite and non-negative");
   }
   if(largest_candidate_size(s) == 0)
   {
     int smallest = s.candidates.front().basis_size;
     for(const Fit_candidate& c : s.candidates) smallest = std::min(smallest, c.basis_size);
     fail("zoomout_final_size = " + std::to_string(s.zoomout_final_size) +
-         " must be at least spectral_basis_size = " + std::to_string(smallest));
+         " must be at least the smallest basis size of initialization_fits, " + std::to_string(smallest));
   }
   if((s.select_by_distortion || s.distortion_repair_passes > 0) && s.distortion_samples < 2)
     fail("distortion_samples = " + std::to_string(s.distortion_samples) + " must be at least 2");

@@ -13,6 +13,7 @@
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 #include <CGAL/Surface_mesh_correspondence/internal/vertex_normals.h>
+#include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -52,7 +53,6 @@ constexpr int shot_index(int radial, int elevation, int azimuth, int cosine)
 }
 
 /// Default support radius, relative to the square root of the total surface area.
-constexpr double default_shot_radius = 0.08;
 /// Minimum number of neighbours (other vertices) of the support (see Shot_options).
 constexpr int default_shot_minimum_neighbors = 10;
 /// Default bound on the number of support points (see Shot_options::maximum_support_points).
@@ -66,7 +66,7 @@ constexpr double shot_enlargement_factor = 1.25;
 struct Shot_options
 {
   /// Support radius relative to sqrt(total surface area): R = relative_radius * sqrt(area).
-  double relative_radius = default_shot_radius;
+  double relative_radius = matching_defaults().shot_radius;
   /// k: the support radius of a vertex is max(R, 1.25 d_k), d_k being the distance to its k-th
   /// nearest other vertex, so that at least k vertices are used (all vertices on meshes with
   /// fewer than k + 1).
