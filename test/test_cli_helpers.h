@@ -81,12 +81,14 @@ struct Run
   std::vector<std::string> err_lines() const { return lines_of(err); }
 };
 
-inline Run comap(const std::string& arguments)
+/// Runs comap with `arguments`; `environment` ("NAME=VALUE ...") is set for this run only.
+inline Run comap(const std::string& arguments, const std::string& environment = "")
 {
   static int counter = 0;
   const std::string out = in_scratch("stdout" + std::to_string(counter)), err = in_scratch("stderr" + std::to_string(counter));
   ++counter;
-  const std::string command = std::string(SMC_TEST_BINARY_DIR) + "/bin/comap " + arguments + " > " + out + " 2> " + err;
+  const std::string command = (environment.empty() ? std::string() : "env " + environment + " ") +
+                              std::string(SMC_TEST_BINARY_DIR) + "/bin/comap " + arguments + " > " + out + " 2> " + err;
   const int status = std::system(command.c_str());
   Run r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);

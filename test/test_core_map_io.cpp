@@ -6,6 +6,8 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -94,6 +96,52 @@ BOOST_AUTO_TEST_CASE(map_checks)
              "map 1->2: entry 1 is vertex 5 (0-based), out of range for a target mesh of 5 vertices");
   BOOST_CHECK_THROW(smc::check_vertex_indices({1, 9}, 9, "gt"), smc::Invalid_map_error);
   BOOST_CHECK_NO_THROW(smc::check_vertex_indices({1, 8}, 9, "gt"));
+}
+
+BOOST_AUTO_TEST_CASE(atomic_output_files)
+{
+  // A file written through Atomic_output_file keeps its previous content until commit(); an object
+  // destroyed without commit() (an exception while writing) leaves neither a truncated file nor its
+  // temporary file; the temporary file is hidden and sits in the same folder.
+  char name[] = "/tmp/smc_test_atomic_XXXXXX";
+  const char* made = ::mkdtemp(name);
+  BOOST_TEST_REQUIRE(made != nullptr);
+  const std::string dir = made, file = dir + "/m.map";
+  auto content = [](const std::string& f) {
+    std::ifstream in(f);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  auto entries = [&] {
+    std::size_t n = 0;
+    for(const auto& e : std::filesystem::directory_iterator(dir)) n += e.is_regular_file();
+    return n;
+  };
+  std::ofstream(file) << "old\n";
+  {
+    smc::Atomic_output_file out(file);
+    BOOST_TEST(out.temporary_filename().rfind(dir + "/.m.map.tmp-", 0) == 0u);
+    out.stream() << "new\n";
+    out.close();
+    BOOST_TEST(content(file) == "old\n");  // written, not yet committed
+    BOOST_TEST(content(out.temporary_filename()) == "new\n");
+  }  // destroyed without commit()
+  BOOST_TEST(content(file) == "old\n");
+  BOOST_TEST(entries() == 1u);
+  {
+    smc::Atomic_output_file out(file);
+    out.stream() << "new\n";
+    out.commit();
+  }
+  BOOST_TEST(content(file) == "new\n");
+  BOOST_TEST(entries() == 1u);
+  // write_vertex_indices() goes through it.
+  smc::write_vertex_indices(file, {2, 0}, 1);
+  BOOST_TEST(content(file) == "3\n1\n");
+  BOOST_TEST(entries() == 1u);
+  BOOST_CHECK_THROW(smc::Atomic_output_file(dir + "/missing/m.map"), smc::IO_error);
+  std::filesystem::remove_all(dir);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

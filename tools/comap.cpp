@@ -28,6 +28,7 @@
 #include <iostream>
 #include <sstream>
 #include <new>
+#include <optional>
 
 namespace comap {
 
@@ -93,7 +94,8 @@ int match(int argc, char** argv)
   p.value("--stats", "FILE.json", "write the settings, the decisions, per-stage times and per-solve statistics as "
           "JSON", "", [&](const std::string& v) { stats = v; });
   p.section("Settings");
-  add_settings_options(p, settings);
+  std::vector<std::string> settings_files;
+  add_settings_options(p, settings, &settings_files);
   add_common_options(p, common);
   bool run = true;
   const std::vector<std::string> files = p.parse(argc, argv, 2, run);
@@ -105,6 +107,10 @@ int match(int argc, char** argv)
   if(!landmarks_file.empty() && !init_12.empty())
     throw Usage_error("--landmarks guide the automatic initial maps: give --landmarks or --init-12 and --init-21, "
                       "not both");
+  std::vector<Named_file> inputs = {{"SOURCE", files[0]}, {"TARGET", files[1]}, {"--init-12", init_12},
+                                    {"--init-21", init_21}, {"--landmarks", landmarks_file}};
+  for(const std::string& f : settings_files) inputs.push_back({"--settings", f});
+  check_outputs_are_new(inputs, {{"--out-12", out_12}, {"--out-21", out_21}, {"--stats", stats}});
   check_writable(out_12);
   check_writable(out_21);
   if(!stats.empty()) check_writable(stats);
@@ -134,14 +140,15 @@ int match(int argc, char** argv)
   Vertex_map map_12, map_21;
   const smc::Matching_result r =
       match_meshes(m1, m2, given ? &given_12 : nullptr, given ? &given_21 : nullptr, np, map_12, map_21);
-  write_vertex_map(out_12, map_12, index_base);
-  write_vertex_map(out_21, map_21, index_base);
-
+  // The maps and the statistics are all written before the first of them replaces its file.
+  smc::Atomic_output_file file_12(out_12), file_21(out_21);
+  smc::write_vertex_indices(file_12.stream(), map_12, index_base);
+  smc::write_vertex_indices(file_21.stream(), map_21, index_base);
+  std::optional<smc::Atomic_output_file> stats_file;
   if(!stats.empty())
   {
-    std::ofstream out(stats);
-    if(!out) throw smc::IO_error("cannot open " + stats + " for writing");
-    Json_writer json(out);
+    stats_file.emplace(stats);
+    Json_writer json(stats_file->stream());
     json.begin_object().value("command", "match").value("index_base", index_base);
     json.begin_object("source").value("file", files[0]).value("vertices", n1).end_object();
     json.begin_object("target").value("file", files[1]).value("vertices", n2).end_object();
@@ -158,8 +165,11 @@ int match(int argc, char** argv)
     json.value("loading_seconds", load_seconds).value("total_seconds", load_seconds + r.total_seconds);
     json.value("peak_memory_mib", peak_memory_mib());
     json.end_object().finish();
-    if(!out) throw smc::IO_error("error while writing " + stats);
   }
+  if(stats_file)
+    commit_outputs({&file_12, &file_21, &*stats_file});
+  else
+    commit_outputs({&file_12, &file_21});
 
   std::cout << "source: " << files[0] << " (" << n1 << " vertices)\n"
             << "target: " << files[1] << " (" << n2 << " vertices)\n";

@@ -330,7 +330,8 @@ int run_bench(int argc, char** argv)
           [&](const std::string& v) { o.label = v; });
   p.flag("--verbose", "a progress line for every MRF solve", [&] { o.verbose = true; });
   p.section("Settings");
-  add_settings_options(p, settings);
+  std::vector<std::string> settings_files;
+  add_settings_options(p, settings, &settings_files);
   add_common_options(p, common);
   bool run = true;
   const std::vector<std::string> extra = p.parse(argc, argv, 2, run);
@@ -342,6 +343,14 @@ int run_bench(int argc, char** argv)
   if(o.pairs.empty()) o.pairs = o.data + "/test_pairs.txt";
   if(!directory_exists(o.data)) throw Input_error("--data: " + o.data + " is not a directory");
   if(!automatic && !directory_exists(o.init)) throw Input_error("--init: " + o.init + " is not a directory");
+  // Nothing bench writes under --out may be one of its inputs.
+  std::vector<Named_file> inputs = {{"--data", o.data}, {"--pairs", o.pairs}, {"--init", o.init}, {"--compare", o.compare}};
+  for(const std::string& f : settings_files) inputs.push_back({"--settings", f});
+  std::vector<Named_file> outputs = {{"--out", o.out}};
+  for(const char* name : {"maps", "unrefined_maps", "pairs.csv", "summary.json", "curves.csv", "failures.txt",
+                          "cumulative_error.svg", "cycle_consistency.svg", "per_pair_error.svg"})
+    outputs.push_back({"--out (its " + std::string(name) + ")", o.out + "/" + name});
+  check_outputs_are_new(inputs, outputs);
   std::vector<std::pair<std::string, std::string> > pairs = read_pairs(o.pairs);
   if(o.limit > 0 && static_cast<std::size_t>(o.limit) < pairs.size()) pairs.resize(static_cast<std::size_t>(o.limit));
   auto mesh_file = [&](const std::string& name) { return o.data + "/off/" + name + ".off"; };
@@ -428,10 +437,9 @@ int run_bench(int argc, char** argv)
       r.direction[0].refined = evaluate(*A, *B, m12, m21);
       r.direction[1].refined = evaluate(*B, *A, m21, m12);
       r.evaluation_seconds = eval_watch.seconds();
-      write_vertex_map(map_file(o.out + "/unrefined_maps", r.a, r.b), m.unrefined_map_12, 1);
-      write_vertex_map(map_file(o.out + "/unrefined_maps", r.b, r.a), m.unrefined_map_21, 1);
-      write_vertex_map(map_file(o.out + "/maps", r.a, r.b), m12, 1);
-      write_vertex_map(map_file(o.out + "/maps", r.b, r.a), m21, 1);
+      write_vertex_maps(map_file(o.out + "/unrefined_maps", r.a, r.b), m.unrefined_map_12,
+                        map_file(o.out + "/unrefined_maps", r.b, r.a), m.unrefined_map_21, 1);
+      write_vertex_maps(map_file(o.out + "/maps", r.a, r.b), m12, map_file(o.out + "/maps", r.b, r.a), m21, 1);
       r.ok = true;
     }
     catch(const std::exception& e)
@@ -479,8 +487,8 @@ int run_bench(int argc, char** argv)
   std::size_t failed = 0, worsened = 0, maps = 0;
   double initialization_sum = 0, data_sum = 0, trws_sum = 0, refinement_sum = 0, selection_sum = 0;
   {
-    std::ofstream csv(o.out + "/pairs.csv");
-    if(!csv) throw smc::IO_error("cannot write " + o.out + "/pairs.csv");
+    smc::Atomic_output_file csv_file(o.out + "/pairs.csv");
+    std::ostream& csv = csv_file.stream();
     csv << "pair,direction,source,target,samples,initial_error,unrefined_error,refined_error,initial_median,"
            "refined_median,initial_within_0.025,unrefined_within_0.025,refined_within_0.025,initial_within_0.05,"
            "refined_within_0.05,initial_sym_error,refined_sym_error,initial_cycle_error,unrefined_cycle_error,"
@@ -537,6 +545,7 @@ int run_bench(int argc, char** argv)
             << optional_value(r.automatic_maps_distortion) << "\n";
       }
     }
+    commit_outputs({&csv_file});
   }
   unrefined.finish();
   initial.finish();
@@ -544,9 +553,10 @@ int run_bench(int argc, char** argv)
   const std::size_t succeeded = results.size() - failed;
   if(failed > 0)
   {
-    std::ofstream f(o.out + "/failures.txt");
+    smc::Atomic_output_file f(o.out + "/failures.txt");
     for(const Pair_result& r : results)
-      if(!r.ok) f << r.a << "\t" << r.b << "\t" << r.error << "\n";
+      if(!r.ok) f.stream() << r.a << "\t" << r.b << "\t" << r.error << "\n";
+    commit_outputs({&f});
   }
   const std::vector<double> thresholds =
       succeeded > 0 ? results[std::find_if(results.begin(), results.end(), [](const Pair_result& r) { return r.ok; }) -
@@ -558,7 +568,8 @@ int run_bench(int argc, char** argv)
   if(succeeded > 0)
   {
     {
-      std::ofstream c(o.out + "/curves.csv");
+      smc::Atomic_output_file curves(o.out + "/curves.csv");
+      std::ostream& c = curves.stream();
       c << "# label: " << o.label << "\n"
         << "threshold,initial,refined,initial_symmetric,refined_symmetric,cycle_before,cycle_after\n";
       for(std::size_t k = 0; k < thresholds.size(); ++k)
@@ -568,6 +579,7 @@ int run_bench(int argc, char** argv)
           << at(initial.symmetric_curve) << "," << at(refined.symmetric_curve) << "," << at(initial.cycle_curve) << ","
           << at(refined.cycle_curve) << "\n";
       }
+      commit_outputs({&curves});
     }
     Plot errors;
     errors.title = "Cumulative geodesic error, " + std::to_string(2 * succeeded) + " maps";
@@ -615,8 +627,8 @@ int run_bench(int argc, char** argv)
     write_svg(o.out + "/per_pair_error.svg", per_pair);
   }
   {
-    std::ofstream s(o.out + "/summary.json");
-    Json_writer json(s);
+    smc::Atomic_output_file summary(o.out + "/summary.json");
+    Json_writer json(summary.stream());
     json.begin_object()
         .value("label", o.label)
         .value("data", o.data)
@@ -645,6 +657,7 @@ int run_bench(int argc, char** argv)
         .value("threads_per_job", threads_per_job)
         .end_object();
     json.end_object().finish();
+    commit_outputs({&summary});
   }
 
   std::cout << "comap bench: " << succeeded << " pairs (" << 2 * succeeded << " maps) of " << o.data << ", initial maps: "

@@ -344,8 +344,8 @@ int run_demo(int argc, char** argv)
   write_svg(out + "/cycle_consistency.svg", cycle);
   const double total_seconds = total.seconds();
   {
-    std::ofstream s(out + "/summary.json");
-    Json_writer json(s);
+    smc::Atomic_output_file summary(out + "/summary.json");
+    Json_writer json(summary.stream());
     json.begin_object().value("source", source_name).value("target", target_name);
     json.value("mean_edge_distortion", distortion.first).value("maximum_edge_distortion", distortion.second);
     write_settings(json, "settings", settings, smc::Map_origin::automatic);
@@ -361,6 +361,7 @@ int run_demo(int argc, char** argv)
           .end_object();
     }
     json.value("total_seconds", total_seconds).end_object().finish();
+    commit_outputs({&summary});
   }
 
   const std::size_t n = num_vertices(source) + num_vertices(target);

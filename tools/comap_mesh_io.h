@@ -13,6 +13,7 @@
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
 
 #include <array>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -40,8 +41,33 @@ Vertex_map read_vertex_map(const std::string& file, int index_base, std::size_t 
 /// `mesh_vertices` vertices.
 Vertex_map read_correspondences(const std::string& file, int index_base, std::size_t mesh_vertices);
 
-/// Writes a vertex map, one index per line.
+/// A file named on the command line: what named it (an option, or SOURCE / TARGET) and its path.
+struct Named_file
+{
+  std::string name, path;
+};
+
+/// Whether two paths name the same file: the same device and inode when both exist (through
+/// symbolic links, hard links or different spellings of the path), else the same absolute path
+/// once the existing part of each is resolved.
+bool same_file(const std::string& a, const std::string& b);
+
+/// Checked before any work: throws Usage_error naming both when an output names an input or
+/// another output of the same run (empty paths are skipped).
+void check_outputs_are_new(const std::vector<Named_file>& inputs, const std::vector<Named_file>& outputs);
+
+/// Renames completed temporary files over their outputs, in order: every file is written before
+/// the first rename. The environment variable COMAP_TEST_KILL_BEFORE_COMMIT (a test hook) kills
+/// the process here, between the writing and the renaming, to show that the outputs then keep
+/// their previous content.
+void commit_outputs(std::initializer_list<CGAL::Surface_mesh_correspondence::Atomic_output_file*> files);
+
+/// Writes a vertex map, one index per line, atomically.
 void write_vertex_map(const std::string& file, const Vertex_map& map, int index_base);
+
+/// Writes the two maps of a run atomically, both complete before either replaces its file.
+void write_vertex_maps(const std::string& file_12, const Vertex_map& map_12, const std::string& file_21,
+                       const Vertex_map& map_21, int index_base);
 
 /// Writes `mesh` as an ASCII PLY with one colour per vertex (red, green, blue as uchar), which
 /// MeshLab, Blender and ParaView display directly.

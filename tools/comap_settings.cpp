@@ -223,10 +223,13 @@ std::string settings_help()
   return out.str();
 }
 
-void add_settings_options(Option_parser& p, smc::Matching_settings& settings)
+void add_settings_options(Option_parser& p, smc::Matching_settings& settings, std::vector<std::string>* settings_files)
 {
   p.value("--settings", "FILE.json", "expert settings, a JSON object {\"name\": value}; see the list below", "",
-          [&settings](const std::string& v) { read_settings_file(v, settings); });
+          [&settings, settings_files](const std::string& v) {
+            read_settings_file(v, settings);
+            if(settings_files) settings_files->push_back(v);
+          });
   p.value("--set", "NAME=VALUE", "one expert setting (repeatable; after --settings, in order)", "",
           [&settings](const std::string& v) { set_setting(v, settings); });
   p.epilogue(settings_help());

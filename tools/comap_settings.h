@@ -33,7 +33,8 @@ void set_setting(const std::string& assignment, smc::Matching_settings& settings
 
 /// Registers --settings FILE.json and --set NAME=VALUE on `parser`, and the expert help: one line
 /// per setting of the registry (name, type, defaults, range, documentation).
-void add_settings_options(Option_parser& parser, smc::Matching_settings& settings);
+void add_settings_options(Option_parser& parser, smc::Matching_settings& settings,
+                          std::vector<std::string>* settings_files = nullptr);
 
 /// The expert help: the registry as text, one entry per setting.
 std::string settings_help();

@@ -3,6 +3,7 @@
 
 #include "comap_svg.h"
 #include "comap_common.h"
+#include "comap_mesh_io.h"
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 
@@ -139,11 +140,9 @@ void write_svg(const std::string& file, const Plot& plot)
     svg << "<text x=\"" << lx + 44 << "\" y=\"" << y << "\" font-size=\"12\">" << escape(s.label) << "</text>\n";
   }
   svg << "</svg>\n";
-  std::ofstream out(file);
-  if(!out) throw CGAL::Surface_mesh_correspondence::IO_error("cannot open " + file + " for writing");
-  out << svg.str();
-  out.flush();
-  if(!out) throw CGAL::Surface_mesh_correspondence::IO_error("error while writing " + file);
+  CGAL::Surface_mesh_correspondence::Atomic_output_file out(file);
+  out.stream() << svg.str();
+  commit_outputs({&out});
 }
 
 } // namespace comap

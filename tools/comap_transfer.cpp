@@ -183,6 +183,8 @@ int run_transfer(int argc, char** argv)
   if(source.empty() || target.empty() || map_file.empty() || out.empty())
     throw Usage_error("transfer needs --source, --target, --map-12 and --out");
   const std::string out_target = target_file_name(out);
+  check_outputs_are_new({{"--source", source}, {"--target", target}, {"--map-12", map_file}, {"--texture", texture_file}},
+                        {{"--out", out}, {"the target's output (from --out)", out_target}});
   check_writable(out);
   const Progress progress(common.quiet);
   const Mesh ms = read_triangle_mesh(source), mt = read_triangle_mesh(target);

@@ -10,14 +10,19 @@
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 
+#include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <istream>
 #include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace CGAL {
 namespace Surface_mesh_correspondence {
@@ -88,16 +93,79 @@ inline void write_vertex_indices(std::ostream& out, const Vertex_index_map_vecto
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
-/// Writes a vertex index file (see `write_vertex_indices()`).
+/// An output file written atomically: the text goes to a temporary file in the same folder, which
+/// `commit()` renames over the file. Until then the file keeps its previous content (or does not
+/// exist); a write that fails, throws or is killed never leaves a truncated file. When the object
+/// is destroyed without `commit()`, the temporary file is removed. The temporary file's name is
+/// hidden and never ends like an output: `DIR/.NAME.tmp-PID-N` for `DIR/NAME`, so a killed run's
+/// leftovers are not mistaken for outputs.
+///
+/// To replace several files together (the two maps of a run), write them all, then commit them
+/// one after the other: every file is complete before the first rename.
+class Atomic_output_file
+{
+public:
+  /// Opens the temporary file next to `filename`. \throws IO_error when it cannot be created.
+  explicit Atomic_output_file(std::string filename) : filename_(std::move(filename))
+  {
+    static std::atomic<unsigned> counter(0);
+    const std::size_t slash = filename_.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? std::string() : filename_.substr(0, slash + 1);
+    const std::string name = slash == std::string::npos ? filename_ : filename_.substr(slash + 1);
+    temporary_ = dir + "." + name + ".tmp-" + std::to_string(long(::getpid())) + "-" + std::to_string(counter++);
+    out_.open(temporary_, std::ios::out | std::ios::trunc);
+    if(!out_) throw IO_error("cannot open " + filename_ + " for writing (temporary file " + temporary_ + "): " +
+                             std::strerror(errno));
+  }
+  Atomic_output_file(const Atomic_output_file&) = delete;
+  Atomic_output_file& operator=(const Atomic_output_file&) = delete;
+  ~Atomic_output_file()
+  {
+    if(!committed_)
+    {
+      if(out_.is_open()) out_.close();
+      std::remove(temporary_.c_str());
+    }
+  }
+
+  /// The stream to write to.
+  std::ostream& stream() { return out_; }
+  const std::string& filename() const { return filename_; }
+  const std::string& temporary_filename() const { return temporary_; }
+
+  /// Flushes and closes the temporary file. \throws IO_error when a write failed.
+  void close()
+  {
+    if(!out_.is_open()) return;
+    out_.flush();
+    const bool good = bool(out_);
+    out_.close();
+    if(!good || out_.fail()) throw IO_error("error while writing " + filename_ + " (temporary file " + temporary_ + ")");
+  }
+  /// Closes the temporary file and renames it over the file. \throws IO_error.
+  void commit()
+  {
+    close();
+    if(std::rename(temporary_.c_str(), filename_.c_str()) != 0)
+      throw IO_error("cannot rename " + temporary_ + " to " + filename_ + ": " + std::strerror(errno));
+    committed_ = true;
+  }
+
+private:
+  std::string filename_, temporary_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Writes a vertex index file (see `write_vertex_indices()`), atomically (Atomic_output_file).
 /// \throws IO_error when the file cannot be written.
 inline void write_vertex_indices(const std::string& filename, const Vertex_index_map_vector& indices,
                                  int index_base)
 {
-  std::ofstream out(filename);
-  if(!out) throw IO_error("cannot open " + filename + " for writing");
-  write_vertex_indices(out, indices, index_base);
-  out.flush();
-  if(!out) throw IO_error("error while writing " + filename);
+  Atomic_output_file out(filename);
+  write_vertex_indices(out.stream(), indices, index_base);
+  out.commit();
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
