@@ -76,6 +76,52 @@ BOOST_AUTO_TEST_CASE(help_is_short_and_lists_the_registry)
   BOOST_TEST(top.out.find("bench") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(settings_file_round_trip)
+{
+  // comap settings prints every setting of the registry with its default (null where the default
+  // depends on the maps' origin), with comments; read back, it changes nothing; edited, it does.
+  const Run printed = comap("settings");
+  BOOST_TEST_REQUIRE(printed.code == 0, printed.err);
+  for(const smc::Setting_info& s : smc::matching_settings_registry())
+  {
+    const std::string value = s.given_default_text != s.default_text ? std::string("null")
+                              : s.type == "word"                     ? "\"" + s.default_text + "\""
+                                                                     : s.default_text;
+    BOOST_TEST(printed.out.find("\"" + s.name + "\": " + value) != std::string::npos, s.name << ": " << value);
+    BOOST_TEST(printed.out.find("  // " + s.documentation + "\n") != std::string::npos, s.name);
+  }
+  write_text(in_scratch("all.json"), printed.out);
+  const Cli_pair& p = cli_pair();
+  auto run = [&](const std::string& options, const std::string& tag) {
+    const Run r = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch(tag + "12.map") + " --out-21 " +
+                        in_scratch(tag + "21.map") + " --stats " + in_scratch(tag + ".json") + options);
+    BOOST_TEST_REQUIRE(r.code == 0, r.err);
+    return read_text(in_scratch(tag + "12.map")) + read_text(in_scratch(tag + "21.map"));
+  };
+  // The printed file, then the fast settings (the later file wins): the maps of the fast settings.
+  const std::string fast = run(fast_options(), "quick");
+  const std::string template_then_fast = run(" --settings " + in_scratch("all.json") + fast_options(), "template");
+  BOOST_TEST((template_then_fast == fast));
+  // Edited: a setting whose default depends on the maps' origin, set for both.
+  std::string edited = printed.out;
+  const std::string null_candidates = "\"number_of_candidates\": null";
+  BOOST_TEST_REQUIRE(edited.find(null_candidates) != std::string::npos);
+  edited.replace(edited.find(null_candidates), null_candidates.size(), "\"number_of_candidates\": 12");
+  write_text(in_scratch("edited_settings.json"), edited);
+  const std::string twelve =
+      run(" --settings " + in_scratch("edited_settings.json") + fast_options({"number_of_candidates"}), "twelve");
+  const std::string stats = read_text(in_scratch("twelve.json")), fast_stats = read_text(in_scratch("quick.json"));
+  BOOST_TEST(stats.find("\"number_of_candidates\": 12,") != std::string::npos);
+  BOOST_TEST(fast_stats.find("\"number_of_candidates\": 10,") != std::string::npos);
+  BOOST_TEST((twelve != fast));
+  // Unknown names and bad values in the file are named, with its line and column for syntax errors.
+  write_text(in_scratch("broken.json"), "{\n  // a comment\n  \"number_of_candidates\": nul\n}\n");
+  const Run broken = comap("match " + p.a + " " + p.b + " --out-12 " + in_scratch("x12.map") + " --out-21 " +
+                           in_scratch("x21.map") + " --settings " + in_scratch("broken.json"));
+  BOOST_TEST(broken.code == 1);
+  BOOST_TEST(broken.err.find("broken.json:3:") != std::string::npos, broken.err);
+}
+
 BOOST_AUTO_TEST_CASE(match_refines_given_maps_0_and_1_based)
 {
   const Cli_pair& p = cli_pair();

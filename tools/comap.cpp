@@ -324,7 +324,7 @@ int eval(int argc, char** argv)
 
 bool is_command(const std::string& c)
 {
-  return c == "match" || c == "eval" || c == "transfer" || c == "bench" || c == "demo";
+  return c == "match" || c == "eval" || c == "transfer" || c == "bench" || c == "demo" || c == "settings";
 }
 
 void print_usage(std::ostream& out)
@@ -337,7 +337,8 @@ void print_usage(std::ostream& out)
          "  eval       evaluate a map against ground-truth correspondences\n"
          "  transfer   colour the source through a map from the target (PLY with vertex colours)\n"
          "  bench      run and evaluate the refinement on a benchmark dataset (FAUST_r, TOSCA_r layout)\n"
-         "  demo       the whole pipeline on a mesh from libcgal-demo and a deformed, remeshed copy\n";
+         "  demo       the whole pipeline on a mesh from libcgal-demo and a deformed, remeshed copy\n"
+         "  settings   print the settings registry with its defaults as a settings file to edit\n";
 }
 
 } // namespace
@@ -354,6 +355,7 @@ int main(int argc, char** argv)
     if(command == "transfer") return run_transfer(argc, argv);
     if(command == "bench") return run_bench(argc, argv);
     if(command == "demo") return run_demo(argc, argv);
+    if(command == "settings") return run_settings(argc, argv);
     if(command == "-h" || command == "--help" || command == "help")
     {
       print_usage(std::cout);
@@ -364,7 +366,7 @@ int main(int argc, char** argv)
       print_usage(std::cerr);
       return 2;
     }
-    throw Usage_error("unknown command \"" + command + "\" (commands: match, eval, transfer, bench, demo)");
+    throw Usage_error("unknown command \"" + command + "\" (commands: match, eval, transfer, bench, demo, settings)");
   }
   catch(const Usage_error& e)
   {

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 namespace comap {
@@ -19,9 +20,26 @@ class Json_reader
 public:
   Json_reader(const std::string& text, std::string what) : text_(text), what_(std::move(what)) {}
 
+  // Skips white space and // comments (to the end of the line), which `comap settings` writes.
   void skip_space()
   {
-    while(pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    while(pos_ < text_.size())
+    {
+      if(std::isspace(static_cast<unsigned char>(text_[pos_])))
+        ++pos_;
+      else if(text_.compare(pos_, 2, "//") == 0)
+        while(pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+      else
+        break;
+    }
+  }
+  /// Consumes `null` when it comes next.
+  bool null_token()
+  {
+    if(peek() != 'n') return false;
+    if(text_.compare(pos_, 4, "null") != 0) fail("expected a value");
+    pos_ += 4;
+    return true;
   }
   bool at_end()
   {
@@ -158,10 +176,12 @@ void read_settings_file(const std::string& file, smc::Matching_settings& setting
     {
       const std::string key = reader.string_token();
       reader.expect(':');
-      const smc::Setting_value v = reader.value();
       try
       {
-        settings.set(key, v);
+        if(reader.null_token())
+          settings.text(key);  // null: the registry's default (checks that the name exists)
+        else
+          settings.set(key, reader.value());
       }
       catch(const smc::Error& e)
       {
@@ -233,6 +253,49 @@ void add_settings_options(Option_parser& p, smc::Matching_settings& settings, st
   p.value("--set", "NAME=VALUE", "one expert setting (repeatable; after --settings, in order)", "",
           [&settings](const std::string& v) { set_setting(v, settings); });
   p.epilogue(settings_help());
+}
+
+std::string settings_file_template()
+{
+  std::ostringstream out;
+  out << "// The settings of the library's registry with their defaults: a settings file for\n"
+         "// comap match, bench and demo (--settings FILE). Change the values you need and delete the\n"
+         "// other lines, or leave them. null keeps the registry's default: the settings whose default\n"
+         "// depends on where the refined maps came from are null. Text after // is a comment.\n"
+         "{";
+  const char* stage = "";
+  const std::vector<smc::Setting_info>& registry = smc::matching_settings_registry();
+  for(std::size_t i = 0; i < registry.size(); ++i)
+  {
+    const smc::Setting_info& s = registry[i];
+    if(std::string(stage) != smc::to_string(s.stage))
+    {
+      stage = smc::to_string(s.stage);
+      out << "\n  // ------------------------------------------------ " << stage << "\n";
+    }
+    const bool by_origin = s.given_default_text != s.default_text;
+    out << "  // " << s.documentation << "\n  // " << s.type << ", " << s.range_text;
+    if(by_origin)
+      out << "; default " << s.default_text << " for automatic maps, " << s.given_default_text << " for given maps";
+    out << "\n  " << Json_writer::quote(s.name) << ": "
+        << (by_origin ? std::string("null") : s.type == "word" ? Json_writer::quote(s.default_text) : s.default_text)
+        << (i + 1 < registry.size() ? "," : "") << "\n";
+  }
+  out << "}\n";
+  return out.str();
+}
+
+int run_settings(int argc, char** argv)
+{
+  Option_parser p("settings", "comap settings > FILE.json",
+                  "Prints every setting of the library's registry with its default, type, range and documentation, "
+                  "as a settings file to edit and pass to comap match, bench or demo with --settings FILE.json.");
+  bool run = true;
+  const std::vector<std::string> extra = p.parse(argc, argv, 2, run);
+  if(!run) return 0;
+  if(!extra.empty()) throw Usage_error("unexpected argument " + extra.front());
+  std::cout << settings_file_template();
+  return 0;
 }
 
 void write_settings(Json_writer& json, const std::string& key, const smc::Matching_settings& settings,

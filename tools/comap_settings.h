@@ -36,6 +36,14 @@ void set_setting(const std::string& assignment, smc::Matching_settings& settings
 void add_settings_options(Option_parser& parser, smc::Matching_settings& settings,
                           std::vector<std::string>* settings_files = nullptr);
 
+/// The registry as a settings file to edit: every setting with its default and, in comments,
+/// its documentation, type and range; settings whose default depends on the maps' origin are
+/// null (the default). read_settings_file() reads it back.
+std::string settings_file_template();
+
+/// `comap settings`: prints settings_file_template().
+int run_settings(int argc, char** argv);
+
 /// The expert help: the registry as text, one entry per setting.
 std::string settings_help();
 
