@@ -768,12 +768,46 @@ BOOST_AUTO_TEST_CASE(comparison_with_the_automatic_maps_keeps_the_less_distorted
     BOOST_TEST((factor < 1 ? h12 == a12 && h21 == a21 : h12 == s.map_12 && h21 == s.map_21));
     BOOST_TEST(h.passes == (factor < 1 ? c.passes : 0));
   }
+  // The automatic maps are trusted only up to automatic_maps_maximum_distortion: just below their
+  // distortion the swapped arms are kept, just above it they are replaced, as by default (0.1).
+  BOOST_TEST(c.automatic_maps_kept);
+  BOOST_TEST(c.automatic_maps_distortion < 0.1);
+  for(const double factor : {0.999, 1.001})
+  {
+    std::vector<std::size_t> h12 = s.map_12, h21 = s.map_21;
+    const smc::Automatic_initialization_result h = smc::compare_with_automatic_maps(
+        f.pair.m1, f.pair.m2, h12, h21,
+        params::automatic_maps_maximum_distortion(factor * c.automatic_maps_distortion));
+    BOOST_TEST(h.automatic_maps_computed);
+    BOOST_TEST(h.automatic_maps_distortion == c.automatic_maps_distortion);
+    BOOST_TEST(h.automatic_maps_kept == (factor > 1));
+    BOOST_TEST((factor > 1 ? h12 == a12 && h21 == a21 : h12 == s.map_12 && h21 == s.map_21));
+    BOOST_TEST(h.far_from_isometric == (factor < 1));
+  }
+  // Untrusted automatic maps mean a pair far from isometric, where the tear repair is not trusted
+  // either: the repaired maps (error 0.002 here) go back to the maps as given.
+  std::vector<std::size_t> x12 = s.map_12, x21 = s.map_21;
+  const smc::Automatic_initialization_result x = smc::repair_torn_maps(
+      f.pair.m1, f.pair.m2, x12, x21,
+      params::compare_with_automatic_maps(
+          true, params::automatic_maps_comparison_threshold(0.0, params::automatic_maps_maximum_distortion(0.001))));
+  BOOST_TEST(x.far_from_isometric);
+  BOOST_TEST(x.repair_undone);
+  BOOST_TEST(x.repair_passes == 0);
+  BOOST_TEST(!x.automatic_maps_kept);
+  BOOST_TEST(x12 == s.map_12);
+  BOOST_TEST(x21 == s.map_21);
+  BOOST_TEST(!r.far_from_isometric);  // the default (0.1) trusts the automatic maps of this pair
+  BOOST_TEST(!r.repair_undone);
   // Maps that do not fit the meshes, and negative thresholds, are rejected.
   std::vector<std::size_t> short12(s.map_12.begin(), s.map_12.end() - 1), ok21 = s.map_21;
   BOOST_CHECK_THROW(smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, short12, ok21), smc::Invalid_map_error);
   std::vector<std::size_t> n12 = s.map_12, n21 = s.map_21;
   BOOST_CHECK_THROW(smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, n12, n21,
                                                      params::automatic_maps_comparison_threshold(-0.01)),
+                    smc::Invalid_parameter_error);
+  BOOST_CHECK_THROW(smc::compare_with_automatic_maps(f.pair.m1, f.pair.m2, n12, n21,
+                                                     params::automatic_maps_maximum_distortion(-0.01)),
                     smc::Invalid_parameter_error);
 }
 

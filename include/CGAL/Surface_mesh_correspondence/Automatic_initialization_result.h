@@ -69,6 +69,12 @@ struct Automatic_initialization_result
   bool automatic_maps_computed = false;
   bool automatic_maps_kept = false;
   double given_maps_distortion = 0, automatic_maps_distortion = 0;
+  /// Given maps compared with automatic maps that distort the sample distances more than
+  /// `automatic_maps_maximum_distortion`: the pair is far from isometric, where neither the
+  /// automatic maps nor the tear repair (both assume a near-isometry) are trusted. The given maps
+  /// are then kept as the caller gave them: a kept repair pass is undone (`repair_undone`,
+  /// `repair_passes` then 0).
+  bool far_from_isometric = false, repair_undone = false;
   /// Passes run in all (fits and ZoomOut: the first one and the repair passes, kept or not).
   int passes = 0;
   /// Spectra taken from the prepared shapes (0, 1 or 2) instead of computed (the overloads on

@@ -246,6 +246,7 @@ void given_maps_stages(const Shape_data& d1, const Shape_data& d2, const Initial
       initialization_mesh_source(d1), initialization_mesh_source(d2), s, start,
       [&](const Initialization_shape& a, const Initialization_shape& b) {
         Initialization_pass_cache cache;
+        const Given_maps_before_repair before{m12, m21};
         if(repair) events.begin(Matching_stage::repair);
         Automatic_initialization_result r = repair_given_maps_tears<ConcurrencyTag>(a, b, s, m12, m21, repair, cache);
         if(repair)
@@ -259,7 +260,7 @@ void given_maps_stages(const Shape_data& d1, const Shape_data& d2, const Initial
           result.stage_seconds[std::size_t(Matching_stage::repair)] = events.end(Matching_stage::repair);
         }
         if(s.compare_with_automatic_maps) events.begin(Matching_stage::comparison);
-        r = compare_or_grow_given_maps<ConcurrencyTag>(a, b, s, m12, m21, r, cache);
+        r = compare_or_grow_given_maps<ConcurrencyTag>(a, b, s, m12, m21, r, cache, before);
         if(s.compare_with_automatic_maps)
         {
           if(!r.automatic_maps_computed)
@@ -270,7 +271,12 @@ void given_maps_stages(const Shape_data& d1, const Shape_data& d2, const Initial
             result.decisions.push_back(
                 std::string("comparison: the ") + (r.automatic_maps_kept ? "automatic" : "given") +
                 " maps were kept (sample distortion " + fixed_text(r.automatic_maps_distortion) + " automatic, " +
-                fixed_text(r.given_maps_distortion) + " given)");
+                fixed_text(r.given_maps_distortion) + " given" +
+                (!r.automatic_maps_kept && r.automatic_maps_distortion < r.given_maps_distortion
+                     ? "; the automatic maps are not trusted above " +
+                           fixed_text(s.automatic_maps_maximum_distortion) + ": a pair far from isometric"
+                     : std::string()) +
+                ")" + (r.repair_undone ? "; the repair was undone: the given maps are kept as given" : ""));
           result.stage_seconds[std::size_t(Matching_stage::comparison)] = events.end(Matching_stage::comparison);
         }
         return r;

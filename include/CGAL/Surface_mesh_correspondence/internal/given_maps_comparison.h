@@ -28,7 +28,8 @@ namespace internal {
 /// The comparison of repair_given_maps() (`compare_with_automatic_maps`): the automatic maps of
 /// the pair (automatic_initial_maps() on the same shapes, sharing `cache`) replace `map_12` and
 /// `map_21` when their sample maps distort geodesic distances less (pair_distortion(), mean of both
-/// directions; ties keep the given maps). Maps computed elsewhere can be wrong as a whole, core
+/// directions; ties keep the given maps) and at most automatic_maps_maximum_distortion (above it the
+/// pair is far from isometric, where the automatic maps can be wholly wrong however they compare). Maps computed elsewhere can be wrong as a whole, core
 /// included, which no repair from their own cores undoes (the WKS maps of TOSCA_r michael13 -
 /// michael19: error 0.34, orientation kept on 78% of the triangles). Given maps whose sample
 /// distortion is at most automatic_maps_comparison_threshold are kept without computing the
@@ -37,6 +38,13 @@ namespace internal {
 /// to zoomout_final_size (grow_initial_maps(); given maps that no repair pass recomputed have no
 /// functional maps and stay as they are). Returns `given`, or the automatic maps' result, with the
 /// comparison's fields and the times of both.
+/// The given maps as the caller gave them, before their repair: kept when the comparison finds the
+/// pair far from isometric.
+struct Given_maps_before_repair
+{
+  std::vector<std::size_t> map_12, map_21;
+};
+
 template <typename ConcurrencyTag>
 Automatic_initialization_result compare_given_with_automatic_maps(const Initialization_shape& shape1,
                                                                   const Initialization_shape& shape2,
@@ -44,7 +52,8 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
                                                                   Initialization_pass_cache& cache,
                                                                   std::vector<std::size_t>& map_12,
                                                                   std::vector<std::size_t>& map_21,
-                                                                  const Automatic_initialization_result& given)
+                                                                  const Automatic_initialization_result& given,
+                                                                  const Given_maps_before_repair& before)
 {
   prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, cache);
   const double given_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21);
@@ -63,10 +72,12 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
   Automatic_initialization_result automatic =
       automatic_initial_maps<ConcurrencyTag>(shape1, shape2, s, a12, a21, &cache, false);
   const double automatic_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, a12, a21);
-  const bool keep_automatic = automatic_distortion < given_distortion;
+  const bool trusted = automatic_distortion <= s.automatic_maps_maximum_distortion;
+  const bool keep_automatic = trusted && automatic_distortion < given_distortion;
   if(s.verbose)
     std::cerr << "repair_torn_maps: sample distortion of the given maps " << given_distortion
-              << ", of the automatic maps " << automatic_distortion << ": "
+              << ", of the automatic maps " << automatic_distortion << " (trusted up to "
+              << s.automatic_maps_maximum_distortion << "): "
               << (keep_automatic ? "the automatic maps are kept" : "the given maps are kept") << "\n";
   Automatic_initialization_result r = keep_automatic ? automatic : given;
   if(keep_automatic)
@@ -75,6 +86,21 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
     map_21.swap(a21);
     r.spectra_seconds = given.spectra_seconds;
   }
+  else if(!trusted && (map_12 != before.map_12 || map_21 != before.map_21))
+  {
+    // Far from isometric: the repair assumed a near-isometry as the automatic maps do; the maps
+    // stay as given (no functional maps: nothing grows).
+    map_12 = before.map_12;
+    map_21 = before.map_21;
+    r.repair_passes = 0;
+    r.distortion_repair_passes = 0;
+    r.functional_map_12.resize(0, 0);
+    r.functional_map_21.resize(0, 0);
+    r.final_basis_size = 0;
+    r.torn_fraction = r.torn_fraction_before;
+    r.repair_undone = true;
+  }
+  r.far_from_isometric = !trusted;
   r.functional_map_seconds = given.functional_map_seconds + automatic.functional_map_seconds;
   r.zoomout_seconds = given.zoomout_seconds + automatic.zoomout_seconds;
   r.passes = given.passes + automatic.passes;
@@ -124,10 +150,11 @@ Automatic_initialization_result compare_or_grow_given_maps(const Initialization_
                                                            std::vector<std::size_t>& map_12,
                                                            std::vector<std::size_t>& map_21,
                                                            Automatic_initialization_result r,
-                                                           Initialization_pass_cache& cache)
+                                                           Initialization_pass_cache& cache,
+                                                           const Given_maps_before_repair& before)
 {
   if(s.compare_with_automatic_maps)
-    return compare_given_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
+    return compare_given_with_automatic_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r, before);
   grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
   return r;
 }
@@ -143,9 +170,10 @@ Automatic_initialization_result repair_given_maps(const Initialization_shape& sh
 {
   const auto start = std::chrono::steady_clock::now();
   Initialization_pass_cache cache;
+  const Given_maps_before_repair before{map_12, map_21};
   Automatic_initialization_result r =
       repair_given_maps_tears<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, repair, cache);
-  r = compare_or_grow_given_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, cache);
+  r = compare_or_grow_given_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, r, cache, before);
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -145,6 +145,11 @@ struct Initialization_settings
   /// the sample distances well are kept without the cost of the automatic initialisation (on 77 of
   /// the 284 TOSCA_r pairs from the dataset's WKS maps, which then take about half the time).
   double automatic_maps_comparison_threshold = matching_defaults().automatic_maps_comparison_threshold;
+  /// The automatic maps replace the given ones only when their sample distortion is at most this.
+  /// On TOSCA_r (isometric) every automatic map that won the comparison distorted at most 0.071;
+  /// on the non-isometric TOSCA_nonIso every automatic map distorted 0.13-0.23, and those that won
+  /// were wholly wrong (errors 0.60-0.77 against 0.29-0.47 for the WKS maps they replaced).
+  double automatic_maps_maximum_distortion = matching_defaults().automatic_maps_maximum_distortion;
   bool verbose = false;
   /// Called on the calling thread after each step of a pass (the fits, their scores, the ZoomOut)
   /// and after the growth to the final size: the progress of match_shapes(), whose stop request
@@ -187,6 +192,7 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.tear_repair_distortion_tolerance = m.tear_repair_distortion_tolerance;
   s.tear_repair_landmarks = m.number_of_tear_repair_landmarks;
   s.automatic_maps_comparison_threshold = m.automatic_maps_comparison_threshold;
+  s.automatic_maps_maximum_distortion = m.automatic_maps_maximum_distortion;
   return s;
 }
 
@@ -269,6 +275,9 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.distortion_repair_passes < 0) fail("distortion_repair_passes must be non-negative");
   if(!(s.automatic_maps_comparison_threshold >= 0) || !std::isfinite(s.automatic_maps_comparison_threshold))
     fail("automatic_maps_comparison_threshold = " + std::to_string(s.automatic_maps_comparison_threshold) +
+         " must be finite and non-negative");
+  if(!(s.automatic_maps_maximum_distortion >= 0) || !std::isfinite(s.automatic_maps_maximum_distortion))
+    fail("automatic_maps_maximum_distortion = " + std::to_string(s.automatic_maps_maximum_distortion) +
          " must be finite and non-negative");
   if(!(s.distortion_core_tolerance > 0) || !std::isfinite(s.distortion_core_tolerance))
     fail("distortion_core_tolerance must be positive");

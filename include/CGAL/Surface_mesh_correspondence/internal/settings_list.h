@@ -113,6 +113,9 @@
   X(automatic_maps_comparison_threshold, double, 0.035, 0.035, range_at_least(0), comparison,                      \
     "given maps whose sample distortion is at most this are kept without computing the automatic maps "            \
     "(0: always compare)")                                                                                         \
+  X(automatic_maps_maximum_distortion, double, 0.1, 0.1, range_at_least(0), comparison,                           \
+    "the automatic maps replace the given ones only when their sample distortion is at most this; above it the "  \
+    "pair is far from isometric and the given maps are kept as given (their tear repair undone)")                  \
   /* ------------------------------------------------ coupled refinement */                                        \
   X(number_of_candidates, int, 40, 20, range_between(1, 100000), refinement,                                       \
     "candidate target vertices per source vertex (m)")                                                             \
