@@ -2,6 +2,7 @@
 // The flat mesh copy every algorithm runs on: structure, and a clear exception for bad meshes.
 
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #include "test_meshes.h"
 
@@ -118,12 +119,78 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_named)
   // Three triangles around one edge (a non-manifold edge), given as a soup.
   auto fin = smc::internal::Indexed_mesh();
   auto fan = soup({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
-  BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] { smc::internal::finalize_indexed_mesh(fan, {}); }), "not manifold"));
+  BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] { smc::internal::finalize_indexed_mesh(fan, {}); }),
+                      "not manifold: the edge (0, 1) is shared by 3 faces"));
   // Two triangles touching at a single vertex (a pinched vertex).
   auto bow = soup({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}});
   BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] { smc::internal::finalize_indexed_mesh(bow, {}); }),
                       "vertex 0 joins several separate fans"));
   (void)fin;
+}
+
+// Triangle soups (points and index triples): every problem is named with its vertex or face and,
+// when the lines of the file are known, with its line; a valid soup becomes a mesh whose vertex i
+// is point i.
+BOOST_AUTO_TEST_CASE(triangle_soup_checks_and_conversion)
+{
+  typedef std::array<double, 3> P;
+  typedef std::vector<std::size_t> F;
+  // A tetrahedron with its points in a shuffled order.
+  const std::vector<P> points = {{0, 0, 1}, {1, 0, 0}, {0, 0, 0}, {0, 1, 0}};
+  const std::vector<F> faces = {{2, 3, 1}, {2, 1, 0}, {2, 0, 3}, {1, 3, 0}};
+  Mesh tet;
+  std::vector<Point> cgal_points;
+  for(const P& p : points) cgal_points.emplace_back(p[0], p[1], p[2]);
+  smc::triangle_soup_to_mesh(cgal_points, faces, tet);
+  BOOST_TEST(num_vertices(tet) == 4u);
+  BOOST_TEST(num_faces(tet) == 4u);
+  for(std::size_t i = 0; i < 4; ++i) BOOST_TEST(tet.point(Vertex(i)) == cgal_points[i]);
+  BOOST_TEST(CGAL::is_closed(tet));
+  // The mesh is emptied first.
+  smc::triangle_soup_to_mesh(cgal_points, faces, tet);
+  BOOST_TEST(num_vertices(tet) == 4u);
+
+  smc::Triangle_soup_origin origin("tet.off");
+  origin.vertex_lines = {3, 4, 5, 6};
+  origin.face_lines = {7, 8, 9, 10};
+  auto problem = [&](std::vector<P> p, std::vector<F> f) {
+    return error_of<smc::Invalid_mesh_error>([&] { smc::check_triangle_soup(p, f, origin); });
+  };
+  BOOST_TEST(contains(problem(points, faces), "no exception"));  // error_of's answer when nothing is thrown
+  BOOST_TEST(contains(problem({}, faces), "tet.off: the mesh has no vertices"));
+  BOOST_TEST(contains(problem(points, {}), "tet.off: the mesh has no faces"));
+  std::vector<P> nan = points;
+  nan[1][2] = std::numeric_limits<double>::quiet_NaN();
+  BOOST_TEST(contains(problem(nan, faces), "tet.off:4: vertex 1 has a non-finite coordinate"));
+  std::vector<P> inf = points;
+  inf[3][0] = std::numeric_limits<double>::infinity();
+  BOOST_TEST(contains(problem(inf, faces), "tet.off:6: vertex 3 has a non-finite coordinate (inf 1 0)"));
+  BOOST_TEST(contains(problem(points, {{2, 3, 1}, {2, 1, 0}, {2, 0, 4}, {1, 3, 0}}),
+                      "tet.off:9: face 2 refers to vertex 4 but the mesh has 4 vertices"));
+  BOOST_TEST(contains(problem(points, {{2, 3, 1}, {2, 1, 0, 3}, {2, 0, 3}}),
+                      "tet.off:8: 1 of 3 faces are not triangles (face 1 has 4 vertices)"));
+  BOOST_TEST(contains(problem(points, {{2, 3, 1}, {2, 1, 1}, {2, 0, 3}, {1, 3, 0}}),
+                      "tet.off:8: face 1 is degenerate: it repeats vertex 1"));
+  BOOST_TEST(contains(problem(points, {{2, 3, 1}, {1, 2, 0}, {2, 0, 3}, {1, 3, 0}}),
+                      "tet.off has inconsistently oriented faces: faces 0 and 1"));
+  std::vector<P> isolated = points;
+  isolated.push_back({5, 5, 5});
+  BOOST_TEST(contains(problem(isolated, faces), "tet.off: vertex 4 is isolated"));
+  std::vector<P> two = points;
+  for(const P& p : points) two.push_back({p[0] + 3, p[1], p[2]});
+  std::vector<F> two_faces = faces;
+  for(const F& f : faces) two_faces.push_back({f[0] + 4, f[1] + 4, f[2] + 4});
+  BOOST_TEST(contains(problem(two, two_faces), "tet.off has 2 connected components"));
+  // A fin: a third face on the edge (1, 2).
+  std::vector<P> fin = points;
+  fin.push_back({2, -1, 0});
+  std::vector<F> fin_faces = faces;
+  fin_faces.push_back({2, 1, 4});
+  BOOST_TEST(contains(problem(fin, fin_faces), "tet.off is not manifold: the edge (1, 2) is shared by 3 faces"));
+  // Negative indices (numpy arrays of signed integers).
+  const std::vector<std::array<int, 3> > negative = {{2, 3, 1}, {2, 1, 0}, {2, 0, -1}, {1, 3, 0}};
+  BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] { smc::check_triangle_soup(points, negative); }),
+                      "mesh: face 2 refers to vertex -1"));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -4,9 +4,9 @@
 #include "comap_mesh_io.h"
 
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
 #include <algorithm>
 #include <cctype>
@@ -27,72 +27,10 @@
 namespace comap {
 
 namespace smc = CGAL::Surface_mesh_correspondence;
-namespace PMP = CGAL::Polygon_mesh_processing;
 
 namespace {
 
-struct Union_find
-{
-  std::vector<std::size_t> parent;
-  explicit Union_find(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t(0)); }
-  std::size_t find(std::size_t x)
-  {
-    while(parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
-
 typedef std::vector<std::vector<std::size_t> > Polygons;
-
-/// Names the first reason why the triangle soup is not a manifold, consistently oriented mesh.
-std::string soup_problem(const Polygons& triangles)
-{
-  // Faces of every undirected edge, with the direction in which each face traverses it.
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<std::size_t, bool> > > edges;
-  for(std::size_t f = 0; f < triangles.size(); ++f)
-    for(int c = 0; c < 3; ++c)
-    {
-      const std::size_t a = triangles[f][c], b = triangles[f][(c + 1) % 3];
-      edges[std::make_pair(std::min(a, b), std::max(a, b))].emplace_back(f, a < b);
-    }
-  for(const auto& e : edges)
-    if(e.second.size() > 2)
-      return "is not manifold: the edge (" + std::to_string(e.first.first) + ", " + std::to_string(e.first.second) +
-             ") is shared by " + std::to_string(e.second.size()) + " faces";
-  for(const auto& e : edges)
-    if(e.second.size() == 2 && e.second[0].second == e.second[1].second)
-      return "has inconsistently oriented faces: faces " + std::to_string(e.second[0].first) + " and " +
-             std::to_string(e.second[1].first) + " traverse the edge (" + std::to_string(e.first.first) + ", " +
-             std::to_string(e.first.second) +
-             ") in the same direction (reorient it, e.g. with CGAL::Polygon_mesh_processing::orient_polygon_soup)";
-  // Vertices where several fans of faces meet: corners (face, vertex) joined across edges.
-  Union_find corners(3 * triangles.size());
-  auto corner = [&](std::size_t f, std::size_t v) {
-    for(int c = 0; c < 3; ++c)
-      if(triangles[f][c] == v) return 3 * f + c;
-    return std::size_t(0);
-  };
-  for(const auto& e : edges)
-    if(e.second.size() == 2)
-    {
-      const std::size_t f = e.second[0].first, g = e.second[1].first;
-      corners.unite(corner(f, e.first.first), corner(g, e.first.first));
-      corners.unite(corner(f, e.first.second), corner(g, e.first.second));
-    }
-  std::map<std::size_t, std::size_t> fan_of_vertex;
-  for(std::size_t f = 0; f < triangles.size(); ++f)
-    for(int c = 0; c < 3; ++c)
-    {
-      const std::size_t v = triangles[f][c], root = corners.find(3 * f + c);
-      auto it = fan_of_vertex.find(v);
-      if(it == fan_of_vertex.end())
-        fan_of_vertex.emplace(v, root);
-      else if(it->second != root)
-        return "is not manifold: vertex " + std::to_string(v) + " joins several separate fans of faces";
-    }
-  return "is not a manifold, consistently oriented surface";
-}
 
 /// A polygon soup read from a file, with the line of each vertex and face in the file (0 for
 /// the binary formats, whose elements have no line).
@@ -262,12 +200,6 @@ Soup read_obj_text(const std::string& file)
   return soup;
 }
 
-/// "FILE:LINE: " for an element read from a text file, "FILE: " otherwise.
-std::string where(const std::string& file, const std::vector<std::size_t>& lines, std::size_t i)
-{
-  return i < lines.size() ? file + ":" + std::to_string(lines[i]) + ": " : file + ": ";
-}
-
 bool is_binary_off(const std::string& file)
 {
   std::ifstream in(file, std::ios::binary);
@@ -316,70 +248,11 @@ Mesh read_triangle_mesh(const std::string& file)
     if(!ok || soup.points.empty())
       throw smc::IO_error(file + ": cannot read a mesh from this file (malformed or empty " + ext + " file)");
   }
-  std::vector<Point>& points = soup.points;
-  Polygons& polygons = soup.polygons;
-  if(points.empty()) throw smc::Invalid_mesh_error(file + ": the mesh has no vertices");
-  if(polygons.empty()) throw smc::Invalid_mesh_error(file + ": the mesh has no faces");
-  const std::size_t n = points.size();
-  for(std::size_t i = 0; i < n; ++i)
-    if(!std::isfinite(points[i].x()) || !std::isfinite(points[i].y()) || !std::isfinite(points[i].z()))
-    {
-      std::ostringstream p;
-      p << points[i].x() << " " << points[i].y() << " " << points[i].z();
-      throw smc::Invalid_mesh_error(where(file, soup.point_lines, i) + "vertex " + std::to_string(i) +
-                                    " has a non-finite coordinate (" + p.str() + ")");
-    }
-  std::size_t non_triangles = 0, first_non_triangle = 0;
-  for(std::size_t f = 0; f < polygons.size(); ++f)
-  {
-    for(std::size_t v : polygons[f])
-      if(v >= n)
-        throw smc::Invalid_mesh_error(where(file, soup.face_lines, f) + "face " + std::to_string(f) +
-                                      " refers to vertex " + std::to_string(v) + " but the file has " +
-                                      std::to_string(n) + " vertices");
-    if(polygons[f].size() != 3 && non_triangles++ == 0) first_non_triangle = f;
-  }
-  if(non_triangles > 0)
-    throw smc::Invalid_mesh_error(where(file, soup.face_lines, first_non_triangle) + std::to_string(non_triangles) +
-                                  " of " + std::to_string(polygons.size()) + " faces are not triangles (face " +
-                                  std::to_string(first_non_triangle) + " has " +
-                                  std::to_string(polygons[first_non_triangle].size()) +
-                                  " vertices); triangulate the mesh first");
-  for(std::size_t f = 0; f < polygons.size(); ++f)
-  {
-    const auto& t = polygons[f];
-    if(t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-      throw smc::Invalid_mesh_error(where(file, soup.face_lines, f) + "face " + std::to_string(f) +
-                                    " is degenerate: it repeats vertex " +
-                                    std::to_string(t[0] == t[1] || t[0] == t[2] ? t[0] : t[1]));
-  }
-  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons)) throw smc::Invalid_mesh_error(file + " " + soup_problem(polygons));
-  std::vector<char> used(n, 0);
-  Union_find components(n);
-  for(const auto& t : polygons)
-  {
-    for(std::size_t v : t) used[v] = 1;
-    components.unite(t[0], t[1]);
-    components.unite(t[1], t[2]);
-  }
-  for(std::size_t v = 0; v < n; ++v)
-    if(!used[v])
-      throw smc::Invalid_mesh_error(file + ": vertex " + std::to_string(v) +
-                                    " belongs to no face (remove isolated vertices first)");
-  std::size_t number_of_components = 0;
-  for(std::size_t v = 0; v < n; ++v) number_of_components += components.find(v) == v;
-  if(number_of_components > 1)
-    throw smc::Invalid_mesh_error(file + " has " + std::to_string(number_of_components) +
-                                  " connected components; comap needs one connected surface (keep the largest, "
-                                  "e.g. with CGAL::Polygon_mesh_processing::keep_largest_connected_components)");
+  smc::Triangle_soup_origin origin(file);
+  origin.vertex_lines = std::move(soup.point_lines);
+  origin.face_lines = std::move(soup.face_lines);
   Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-  if(num_vertices(mesh) != n || num_faces(mesh) != polygons.size())
-    throw smc::Invalid_mesh_error(file + ": the faces do not form a valid surface mesh");
-  // Vertex i must be the i-th point of the file: maps refer to the file's numbering.
-  for(std::size_t i = 0; i < n; ++i)
-    if(mesh.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(i))) != points[i])
-      throw smc::Invalid_mesh_error(file + ": internal error: the vertex order changed while building the mesh");
+  smc::triangle_soup_to_mesh(soup.points, soup.polygons, mesh, origin);
   return mesh;
 }
 

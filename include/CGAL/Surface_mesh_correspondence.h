@@ -29,5 +29,6 @@
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
 #include <CGAL/Surface_mesh_correspondence/match_shapes.h>
+#include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #endif // CGAL_SURFACE_MESH_CORRESPONDENCE_H

@@ -204,8 +204,8 @@ inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& lab
     const std::size_t multiplicity = e - k;
     if(multiplicity > 2)
       throw Invalid_mesh_error(label + " is not manifold: the edge (" + std::to_string(v) + ", " +
-                               std::to_string(ring[k]) + ") or vertex " + std::to_string(v) +
-                               " is shared by more than two faces");
+                               std::to_string(ring[k]) + ") is shared by " + std::to_string(multiplicity) +
+                               " faces");
     if(multiplicity == 1) ++boundary_edges2;
     unique_ring.push_back(ring[k]);
     k = e;
