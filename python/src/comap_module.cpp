@@ -1,0 +1,238 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The C++ half of the Python package `comap`: the library's match_shapes() on meshes given as
+// arrays. The Python half (comap/__init__.py) converts array-likes to the contiguous arrays this
+// module takes and documents the API.
+
+#include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/match_shapes.h>
+#include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+namespace smc = CGAL::Surface_mesh_correspondence;
+
+namespace {
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef CGAL::Surface_mesh<Kernel::Point_3> Mesh;
+typedef Mesh::Vertex_index Vertex;
+typedef Mesh::Property_map<Vertex, Vertex> Vertex_vertex_map;
+
+#ifdef CGAL_LINKED_WITH_TBB
+typedef CGAL::Parallel_tag Concurrency;
+#else
+typedef CGAL::Sequential_tag Concurrency;
+#endif
+
+typedef py::array_t<double, py::array::c_style | py::array::forcecast> Points_array;
+typedef py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> Index_array;
+
+/// The mesh of points (n, 3) and faces (m, 3), checked by the library (the Python half has
+/// checked the shapes and types); vertex i is point i.
+Mesh mesh_of_arrays(const Points_array& points, const Index_array& faces, const std::string& name)
+{
+  const auto p = points.unchecked<2>();
+  const auto f = faces.unchecked<2>();
+  std::vector<Kernel::Point_3> soup_points;
+  soup_points.reserve(std::size_t(p.shape(0)));
+  for(py::ssize_t i = 0; i < p.shape(0); ++i) soup_points.emplace_back(p(i, 0), p(i, 1), p(i, 2));
+  std::vector<std::array<std::int64_t, 3> > soup_faces(std::size_t(f.shape(0)));
+  for(py::ssize_t i = 0; i < f.shape(0); ++i) soup_faces[std::size_t(i)] = {f(i, 0), f(i, 1), f(i, 2)};
+  Mesh mesh;
+  smc::triangle_soup_to_mesh(soup_points, soup_faces, mesh, smc::Triangle_soup_origin(name));
+  return mesh;
+}
+
+/// A vertex-to-vertex property map of `source` holding `map` (indices of the target's vertices,
+/// checked by the library: its length and range).
+Vertex_vertex_map vertex_map(Mesh& source, const std::string& name, const Index_array& map, std::size_t targets,
+                             const std::string& what)
+{
+  const auto m = map.unchecked<1>();
+  if(std::size_t(m.shape(0)) != num_vertices(source))
+    throw smc::Invalid_map_error(what + " has " + std::to_string(m.shape(0)) + " entries but its source mesh has " +
+                                 std::to_string(num_vertices(source)) + " vertices");
+  Vertex_vertex_map p = source.add_property_map<Vertex, Vertex>(name).first;
+  for(py::ssize_t i = 0; i < m.shape(0); ++i)
+  {
+    if(m(i) < 0 || std::size_t(m(i)) >= targets)
+      throw smc::Invalid_map_error(what + ": entry " + std::to_string(i) + " is " + std::to_string(m(i)) +
+                                   ", not a vertex of its target mesh (" + std::to_string(targets) + " vertices)");
+    p[Vertex(Mesh::size_type(i))] = Vertex(Mesh::size_type(m(i)));
+  }
+  return p;
+}
+
+py::array_t<std::int64_t> index_array(const Mesh& source, const Vertex_vertex_map& p)
+{
+  py::array_t<std::int64_t> out(py::ssize_t(num_vertices(source)));
+  auto o = out.mutable_unchecked<1>();
+  for(Vertex v : source.vertices()) o(py::ssize_t(v.idx())) = std::int64_t(p[v].idx());
+  return out;
+}
+
+template <typename Range>
+py::array_t<std::int64_t> index_array(const Range& r)
+{
+  py::array_t<std::int64_t> out(py::ssize_t(r.size()));
+  auto o = out.mutable_unchecked<1>();
+  for(std::size_t i = 0; i < r.size(); ++i) o(py::ssize_t(i)) = std::int64_t(r[i]);
+  return out;
+}
+
+const char* origin_name(smc::Map_origin o) { return o == smc::Map_origin::automatic ? "automatic" : "given"; }
+
+/// The figures of Matching_result, with the keys of `comap match --stats` ("result").
+py::dict result_dict(const smc::Matching_result& r)
+{
+  py::dict d;
+  d["initial_maps"] = origin_name(r.initial_maps);
+  d["refined_maps"] = origin_name(r.refined_maps);
+  d["used_landmarks"] = r.used_landmarks;
+  d["repaired"] = r.repaired;
+  d["repair_passes"] = r.repair_passes;
+  d["compared"] = r.compared;
+  d["automatic_maps_computed"] = r.automatic_maps_computed;
+  d["automatic_maps_kept"] = r.automatic_maps_kept;
+  d["given_maps_distortion"] = r.given_maps_distortion;
+  d["automatic_maps_distortion"] = r.automatic_maps_distortion;
+  d["refined"] = r.refined;
+  d["termination"] = smc::to_string(r.termination);
+  d["decisions"] = r.decisions;
+  py::dict selection;
+  selection["refined_more_consistent"] = r.selection.refined_more_consistent;
+  selection["refined_fraction_12"] = r.selection.refined_fraction_12;
+  selection["refined_fraction_21"] = r.selection.refined_fraction_21;
+  selection["input_distortion"] = r.selection.input_distortion;
+  selection["refined_distortion"] = r.selection.refined_distortion;
+  selection["selected_distortion"] = r.selection.selected_distortion;
+  selection["inconsistent_input"] = r.selection.inconsistent_input;
+  selection["inconsistent_refined"] = r.selection.inconsistent_refined;
+  selection["inconsistent_selected"] = r.selection.inconsistent_selected;
+  d["selection"] = selection;
+  d["inconsistent_vertices_before"] = r.inconsistent_vertices_before;
+  d["inconsistent_vertices_after"] = r.inconsistent_vertices_after;
+  d["cycle_error_before"] = r.cycle_error_before;
+  d["cycle_error_after"] = r.cycle_error_after;
+  d["distortion_before"] = r.distortion_before;
+  d["distortion_after"] = r.distortion_after;
+  py::dict stages;
+  for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
+    stages[smc::to_string(smc::Matching_stage(s))] = r.stage_seconds[std::size_t(s)];
+  stages["total"] = r.total_seconds;
+  d["stage_seconds"] = stages;
+  py::list steps;
+  for(const smc::Refinement_step& s : r.refinement.steps)
+  {
+    py::dict step;
+    step["outer_iteration"] = s.outer_iteration;
+    step["direction"] = s.direction == 0 ? "1->2" : "2->1";
+    step["rings"] = s.rings;
+    step["energy"] = s.energy;
+    step["lower_bound"] = s.lower_bound;
+    step["trws_iterations"] = s.trws_iterations;
+    step["changed_vertices"] = s.changed_vertices;
+    step["inconsistent_vertices"] = s.inconsistent_vertices;
+    steps.append(step);
+  }
+  py::dict refinement;
+  refinement["outer_iterations"] = r.refinement.outer_iterations;
+  refinement["kept_outer_iterations"] = r.refinement.kept_outer_iterations;
+  refinement["steps"] = steps;
+  d["refinement"] = refinement;
+  d["unrefined_map_12"] = index_array(r.unrefined_map_12);
+  d["unrefined_map_21"] = index_array(r.unrefined_map_21);
+  return d;
+}
+
+py::tuple match(const Points_array& v1, const Index_array& f1, const Points_array& v2, const Index_array& f2,
+                const std::optional<std::pair<Index_array, Index_array> >& init, const std::optional<Index_array>& landmarks)
+{
+  Mesh m1 = mesh_of_arrays(v1, f1, "mesh 1");
+  Mesh m2 = mesh_of_arrays(v2, f2, "mesh 2");
+  const std::size_t n1 = num_vertices(m1), n2 = num_vertices(m2);
+  std::vector<std::pair<std::size_t, std::size_t> > pairs;
+  if(landmarks)
+  {
+    const auto l = landmarks->unchecked<2>();
+    for(py::ssize_t k = 0; k < l.shape(0); ++k)
+    {
+      if(l(k, 0) < 0 || l(k, 1) < 0)
+        throw smc::Invalid_parameter_error("landmark " + std::to_string(k) + " (" + std::to_string(l(k, 0)) + ", " +
+                                           std::to_string(l(k, 1)) + ") has a negative vertex index");
+      pairs.emplace_back(std::size_t(l(k, 0)), std::size_t(l(k, 1)));
+    }
+  }
+  Vertex_vertex_map out12 = m1.add_property_map<Vertex, Vertex>("v:comap_out").first;
+  Vertex_vertex_map out21 = m2.add_property_map<Vertex, Vertex>("v:comap_out").first;
+  smc::Matching_result r;
+  const auto np = smc::parameters::landmarks(pairs);
+  if(init)
+  {
+    const Vertex_vertex_map in12 = vertex_map(m1, "v:comap_in", init->first, n2, "init[0] (the map 1 -> 2)");
+    const Vertex_vertex_map in21 = vertex_map(m2, "v:comap_in", init->second, n1, "init[1] (the map 2 -> 1)");
+    py::gil_scoped_release release;
+    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, smc::parameters::initial_maps(in12, in21, np));
+  }
+  else
+  {
+    py::gil_scoped_release release;
+    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, np);
+  }
+  return py::make_tuple(index_array(m1, out12), index_array(m2, out21), result_dict(r));
+}
+
+} // namespace
+
+PYBIND11_MODULE(_comap, m)
+{
+  m.doc() = "The C++ half of the comap package (see comap.match).";
+  // The library's exceptions: bad input is a ValueError, files an OSError, the rest a RuntimeError;
+  // the message is the library's.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try
+    {
+      if(p) std::rethrow_exception(p);
+    }
+    catch(const smc::IO_error& e)
+    {
+      PyErr_SetString(PyExc_OSError, e.what());
+    }
+    catch(const smc::Invalid_mesh_error& e)
+    {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+    catch(const smc::Invalid_map_error& e)
+    {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+    catch(const smc::Invalid_parameter_error& e)
+    {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+  m.def("match", &match, py::arg("V1"), py::arg("F1"), py::arg("V2"), py::arg("F2"), py::arg("init") = py::none(),
+        py::arg("landmarks") = py::none(),
+        "match(V1, F1, V2, F2, init, landmarks) -> (map_12, map_21, info): see comap.match.");
+  m.attr("has_tbb") =
+#ifdef CGAL_LINKED_WITH_TBB
+      true;
+#else
+      false;
+#endif
+}
