@@ -152,6 +152,13 @@ def test_bad_meshes_raise_value_errors(pair, bad, words):
         assert w in message(e), message(e)
 
 
+def test_too_small_meshes_raise_value_errors(pair):
+    V1, F1, V2, F2 = pair
+    V, F = icosphere(2)
+    with pytest.raises(ValueError, match="mesh 2 has 162 vertices, too few"):
+        comap.match(V1, F1, bumpy(V), F)
+
+
 def test_bad_maps_and_landmarks_raise_value_errors(pair, result):
     V1, F1, V2, F2 = pair
     with pytest.raises(ValueError, match="init must be a pair"):
