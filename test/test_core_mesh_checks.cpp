@@ -2,6 +2,7 @@
 // The flat mesh copy every algorithm runs on: structure, and a clear exception for bad meshes.
 
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/mesh_io.h>
 #include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #include "test_meshes.h"
@@ -11,6 +12,9 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -191,6 +195,53 @@ BOOST_AUTO_TEST_CASE(triangle_soup_checks_and_conversion)
   const std::vector<std::array<int, 3> > negative = {{2, 3, 1}, {2, 1, 0}, {2, 0, -1}, {1, 3, 0}};
   BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] { smc::check_triangle_soup(points, negative); }),
                       "mesh: face 2 refers to vertex -1"));
+}
+
+// Mesh files: OFF and OBJ text (comments, counts on the header line, "i/t/n" and negative OBJ
+// indices) give the file's points in order; problems name the file and the line.
+BOOST_AUTO_TEST_CASE(mesh_files_name_file_and_line)
+{
+  char name[] = "/tmp/smc_mesh_io_XXXXXX";
+  const std::string dir = ::mkdtemp(name);
+  auto write = [&](const std::string& file, const std::string& text) {
+    std::ofstream(dir + "/" + file) << text;
+    return dir + "/" + file;
+  };
+  const std::string tet_off = "OFF 4 4 0\n# points\n0 0 1\n1 0 0\n0 0 0\n0 1 0\n3 2 3 1\n3 2 1 0\n3 2 0 3\n3 1 3 0\n";
+  Mesh off, obj;
+  smc::read_triangle_mesh(write("tet.off", tet_off), off);
+  smc::read_triangle_mesh(write("tet.obj", "v 0 0 1\nv 1 0 0\nvt 0 0\nv 0 0 0\nv 0 1 0\nf 3/1 4/1 2/1\n"
+                                           "f 3//1 2//1 1//1\nf -2 -4 -1\nf 2 4 1\n"),
+                          obj);
+  const Point expected[] = {Point(0, 0, 1), Point(1, 0, 0), Point(0, 0, 0), Point(0, 1, 0)};
+  BOOST_TEST(num_faces(off) == 4u);
+  BOOST_TEST(num_faces(obj) == 4u);
+  for(std::size_t i = 0; i < 4; ++i)
+  {
+    BOOST_TEST(off.point(Vertex(i)) == expected[i]);
+    BOOST_TEST(obj.point(Vertex(i)) == expected[i]);
+  }
+  auto problem = [&](const std::string& file, const std::string& text) {
+    Mesh m;
+    return error_of([&] { smc::read_triangle_mesh(write(file, text), m); });
+  };
+  BOOST_TEST(contains(problem("nan.off", "OFF\n4 4 0\n0 0 1\n1 0 nan\n0 0 0\n0 1 0\n3 2 3 1\n3 2 1 0\n3 2 0 3\n3 1 3 0\n"),
+                      "nan.off:4: vertex 1 has a non-finite coordinate"));
+  BOOST_TEST(contains(problem("range.off", "OFF\n4 4 0\n0 0 1\n1 0 0\n0 0 0\n0 1 0\n3 2 3 1\n3 2 1 9\n3 2 0 3\n3 1 3 0\n"),
+                      "range.off:8: face 1 refers to vertex 9 but the file has 4 vertices"));
+  BOOST_TEST(contains(problem("short.off", "OFF\n4 4 0\n0 0 1\n1 0 0\n0 0 0\n0 1 0\n3 2 3 1\n"),
+                      "short.off: truncated: the header declares 4 faces, the file ends after 1"));
+  BOOST_TEST(contains(problem("x.off", "OFF\n4 4 0\n0 0 1\n1 zero 0\n"), "x.off:4: vertex 1: \"zero\" is not a number"));
+  BOOST_TEST(contains(problem("fin.off", "OFF\n5 5 0\n0 0 1\n1 0 0\n0 0 0\n0 1 0\n2 -1 0\n3 2 3 1\n3 2 1 0\n3 2 0 3\n"
+                                         "3 1 3 0\n3 2 1 4\n"),
+                      "fin.off is not manifold: the edge (1, 2) is shared by 3 faces"));
+  BOOST_TEST(contains(problem("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"),
+                      "quad.obj:5: 1 of 1 faces are not triangles (face 0 has 4 vertices)"));
+  BOOST_TEST(contains(problem("range.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n"), "range.obj:3: face 0 refers to vertex 3"));
+  BOOST_TEST(contains(problem("points.xyz", "0 0 0\n"), "unknown mesh format"));
+  BOOST_TEST(contains(error_of([&] { smc::read_triangle_mesh(dir + "/missing.off", off); }), "cannot open"));
+  BOOST_TEST(contains(error_of([&] { smc::read_triangle_mesh(dir, off); }), "it is a directory"));
+  std::filesystem::remove_all(dir);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -28,6 +28,7 @@
 #include <CGAL/Surface_mesh_correspondence/automatic_initialization.h>
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
+#include <CGAL/Surface_mesh_correspondence/mesh_io.h>
 #include <CGAL/Surface_mesh_correspondence/match_shapes.h>
 #include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
