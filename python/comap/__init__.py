@@ -11,11 +11,14 @@ indices: ``map_12[i]`` is the vertex of mesh 2 matched to vertex i of mesh 1.
     >>> map_12, map_21, info = comap.match(V1, F1, V2, F2)
 """
 
+import os as _os
+
 import numpy as _np
 
 from . import _comap
 
-__all__ = ["match"]
+__all__ = ["match", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
+           "inconsistent_vertices"]
 
 #: Whether the library runs its parallel code paths (Intel TBB), on every core by default.
 has_tbb = _comap.has_tbb
@@ -104,3 +107,85 @@ def match(V1, F1, V2, F2, init=None, landmarks=None):
     if landmarks is not None:
         landmarks = _indices(landmarks, "landmarks", 2, 2, "vertex pairs")
     return _comap.match(V1, F1, V2, F2, maps, landmarks)
+
+
+def _map(A, name):
+    return _indices(A, name, 1, what="vertex indices")
+
+
+def _path(file):
+    return _os.fspath(file)
+
+
+def read_mesh(file):
+    """Reads a triangle mesh from an OFF, OBJ, PLY or STL file.
+
+    Returns ``(V, F)``: ``V`` the (n, 3) float64 vertex positions in the order of the file (vertex
+    i of the maps is the i-th point of the file), ``F`` the (m, 3) int64 triangles, 0-based.
+
+    The mesh gets the checks of ``match``. Raises ``OSError`` for a file that cannot be read
+    (missing, a directory, an unknown format, truncated or malformed) and ``ValueError`` for a
+    mesh ``match`` refuses (a non-finite coordinate, a face index out of range, a non-triangle, a
+    non-manifold edge, several components, ...); for OFF and OBJ files the message names the line
+    ("a.off:12: vertex 9 has a non-finite coordinate").
+    """
+    return _comap.read_mesh(_path(file))
+
+
+def read_map(file, index_base=1):
+    """Reads a vertex map or a ground-truth correspondence list: one vertex index per line
+    (lines starting with '#' and empty lines are skipped), ``index_base``-based in the file
+    (1, the default, as in the FAUST_r and TOSCA_r .map and .vts files and ``comap``'s default;
+    or 0). Returns a 0-based int64 numpy array. Raises ``OSError`` for a missing file or a line that is
+    not an index >= index_base, naming the file and the line."""
+    if index_base not in (0, 1):
+        raise ValueError(f"index_base must be 0 or 1, got {index_base!r}")
+    return _comap.read_map(_path(file), index_base)
+
+
+def write_map(file, map, index_base=1):
+    """Writes a 0-based vertex map, one index per line, ``index_base``-based in the file (1 by
+    default, as ``comap`` writes them). The file is replaced atomically: a temporary file in the
+    same folder renamed into place, so a killed run never leaves a truncated map."""
+    if index_base not in (0, 1):
+        raise ValueError(f"index_base must be 0 or 1, got {index_base!r}")
+    _comap.write_map(_path(file), _map(map, "map"), index_base)
+
+
+def geodesic_errors(V, F, map, gt_source, gt_target, gt_target_symmetric=None):
+    """Geodesic errors of a map from a source mesh to the target mesh ``(V, F)`` against ground
+    truth: sample k says that source vertex ``gt_source[k]`` corresponds to target vertex
+    ``gt_target[k]``, and its error is the geodesic distance on the target between
+    ``map[gt_source[k]]`` and ``gt_target[k]``, divided by the square root of the target's area
+    (the benchmarks' normalisation). With ``gt_target_symmetric`` (the ground truth composed with
+    the target's intrinsic symmetry), each error is the smaller of the two.
+
+    For two shapes with .vts files (a shared template's vertices on each shape): ``gt_source`` is
+    the source's list, ``gt_target`` the target's. Returns one float64 error per sample; e.g.
+    ``errors.mean()`` and ``(errors <= 0.025).mean()``. Raises ``ValueError`` for lists of
+    different lengths or an index out of range.
+    """
+    sym = None if gt_target_symmetric is None else _map(gt_target_symmetric, "gt_target_symmetric")
+    return _comap.geodesic_errors(_points(V, "V"), _indices(F, "F", 2, 3), _map(map, "map"),
+                                  _map(gt_source, "gt_source"), _map(gt_target, "gt_target"), sym)
+
+
+def cycle_errors(V1, F1, map_12, map_21):
+    """Cycle consistency of ``map_12`` (mesh 1 -> mesh 2) and ``map_21`` (back): for every vertex
+    x of mesh 1 ``(V1, F1)``, the geodesic distance on mesh 1 between x and
+    ``map_21[map_12[x]]``, divided by the square root of mesh 1's area. Returns one float64
+    value per vertex of mesh 1 (0 where the cycle returns to x)."""
+    return _comap.cycle_errors(_points(V1, "V1"), _indices(F1, "F1", 2, 3), _map(map_12, "map_12"),
+                               _map(map_21, "map_21"))
+
+
+def coverage(map, target_vertices):
+    """The fraction of the ``target_vertices`` vertices of the target that ``map`` reaches."""
+    return _comap.coverage(_map(map, "map"), int(target_vertices))
+
+
+def inconsistent_vertices(map_12, map_21):
+    """The number of vertices x with ``map_21[map_12[x]] != x`` plus the number of vertices y
+    with ``map_12[map_21[y]] != y``: up to a factor 2, the cycle-consistency measure of Eq. (4) of
+    Azencot, Dubrovina and Guibas (2019)."""
+    return _comap.inconsistent_vertices(_map(map_12, "map_12"), _map(map_21, "map_21"))

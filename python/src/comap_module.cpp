@@ -5,8 +5,11 @@
 // arrays. The Python half (comap/__init__.py) converts array-likes to the contiguous arrays this
 // module takes and documents the API.
 
+#include <CGAL/Surface_mesh_correspondence/evaluation.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/map_io.h>
 #include <CGAL/Surface_mesh_correspondence/match_shapes.h>
+#include <CGAL/Surface_mesh_correspondence/mesh_io.h>
 #include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -197,6 +200,113 @@ py::tuple match(const Points_array& v1, const Index_array& f1, const Points_arra
   return py::make_tuple(index_array(m1, out12), index_array(m2, out21), result_dict(r));
 }
 
+// ------------------------------------------------------------------------------ files
+
+py::tuple read_mesh(const std::string& file)
+{
+  std::vector<Kernel::Point_3> points;
+  smc::Soup_polygons polygons;
+  smc::Triangle_soup_origin origin;
+  {
+    py::gil_scoped_release release;
+    smc::read_triangle_soup(file, points, polygons, origin);
+    smc::check_triangle_soup(points, polygons, origin);
+  }
+  py::array_t<double> v({py::ssize_t(points.size()), py::ssize_t(3)});
+  auto pv = v.mutable_unchecked<2>();
+  for(std::size_t i = 0; i < points.size(); ++i)
+    for(int c = 0; c < 3; ++c) pv(py::ssize_t(i), c) = points[i][c];
+  py::array_t<std::int64_t> f({py::ssize_t(polygons.size()), py::ssize_t(3)});
+  auto pf = f.mutable_unchecked<2>();
+  for(std::size_t k = 0; k < polygons.size(); ++k)
+    for(int c = 0; c < 3; ++c) pf(py::ssize_t(k), c) = std::int64_t(polygons[k][std::size_t(c)]);
+  return py::make_tuple(v, f);
+}
+
+smc::Vertex_index_map_vector index_vector(const Index_array& a, const std::string& what)
+{
+  const auto m = a.unchecked<1>();
+  smc::Vertex_index_map_vector out(std::size_t(m.shape(0)));
+  for(py::ssize_t i = 0; i < m.shape(0); ++i)
+  {
+    if(m(i) < 0)
+      throw smc::Invalid_map_error(what + ": entry " + std::to_string(i) + " is " + std::to_string(m(i)) +
+                                   ", not a vertex index");
+    out[std::size_t(i)] = std::size_t(m(i));
+  }
+  return out;
+}
+
+py::array_t<std::int64_t> read_map(const std::string& file, int index_base)
+{
+  smc::Vertex_index_map_vector map;
+  {
+    py::gil_scoped_release release;
+    map = smc::read_vertex_indices(file, index_base);
+  }
+  return index_array(map);
+}
+
+void write_map(const std::string& file, const Index_array& map, int index_base)
+{
+  const smc::Vertex_index_map_vector m = index_vector(map, "map");
+  py::gil_scoped_release release;
+  smc::write_vertex_indices(file, m, index_base);
+}
+
+// ------------------------------------------------------------------------------ evaluation
+
+py::array_t<double> double_array(const std::vector<double>& v)
+{
+  py::array_t<double> out(py::ssize_t(v.size()));
+  std::copy(v.begin(), v.end(), out.mutable_data());
+  return out;
+}
+
+py::array_t<double> geodesic_errors(const Points_array& v, const Index_array& f, const Index_array& map,
+                                    const Index_array& gt_source, const Index_array& gt_target,
+                                    const std::optional<Index_array>& gt_symmetric)
+{
+  const Mesh target = mesh_of_arrays(v, f, "the target mesh");
+  const smc::Vertex_index_map_vector m = index_vector(map, "map"), s = index_vector(gt_source, "gt_source"),
+                                     t = index_vector(gt_target, "gt_target");
+  smc::Vertex_index_map_vector sym;
+  if(gt_symmetric) sym = index_vector(*gt_symmetric, "gt_target_symmetric");
+  smc::Error_statistics e;
+  {
+    py::gil_scoped_release release;
+    const smc::Map_evaluator<Concurrency> evaluator(target);
+    e = gt_symmetric ? evaluator.symmetric_geodesic_errors(m, s, t, sym) : evaluator.geodesic_errors(m, s, t);
+  }
+  return double_array(e.errors);
+}
+
+py::array_t<double> cycle_errors(const Points_array& v, const Index_array& f, const Index_array& map_12,
+                                 const Index_array& map_21)
+{
+  const Mesh source = mesh_of_arrays(v, f, "the source mesh");
+  const smc::Vertex_index_map_vector a = index_vector(map_12, "map_12"), b = index_vector(map_21, "map_21");
+  smc::Cycle_consistency c;
+  {
+    py::gil_scoped_release release;
+    c = smc::Map_evaluator<Concurrency>(source).cycle_consistency(a, b);
+  }
+  return double_array(c.distances.errors);
+}
+
+double coverage(const Index_array& map, std::size_t target_vertices)
+{
+  return smc::map_coverage(index_vector(map, "map"), target_vertices);
+}
+
+std::size_t inconsistent_vertices(const Index_array& map_12, const Index_array& map_21)
+{
+  const smc::Vertex_index_map_vector a = index_vector(map_12, "map_12"), b = index_vector(map_21, "map_21");
+  smc::check_vertex_map(a, a.size(), b.size(), "map_12");
+  smc::check_vertex_map(b, b.size(), a.size(), "map_21");
+  return smc::number_of_inconsistent_vertices(a, b);
+}
+
 } // namespace
 
 PYBIND11_MODULE(_comap, m)
@@ -229,6 +339,14 @@ PYBIND11_MODULE(_comap, m)
   m.def("match", &match, py::arg("V1"), py::arg("F1"), py::arg("V2"), py::arg("F2"), py::arg("init") = py::none(),
         py::arg("landmarks") = py::none(),
         "match(V1, F1, V2, F2, init, landmarks) -> (map_12, map_21, info): see comap.match.");
+  m.def("read_mesh", &read_mesh, py::arg("file"));
+  m.def("read_map", &read_map, py::arg("file"), py::arg("index_base"));
+  m.def("write_map", &write_map, py::arg("file"), py::arg("map"), py::arg("index_base"));
+  m.def("geodesic_errors", &geodesic_errors, py::arg("V"), py::arg("F"), py::arg("map"), py::arg("gt_source"),
+        py::arg("gt_target"), py::arg("gt_target_symmetric") = py::none());
+  m.def("cycle_errors", &cycle_errors, py::arg("V"), py::arg("F"), py::arg("map_12"), py::arg("map_21"));
+  m.def("coverage", &coverage, py::arg("map"), py::arg("target_vertices"));
+  m.def("inconsistent_vertices", &inconsistent_vertices, py::arg("map_12"), py::arg("map_21"));
   m.attr("has_tbb") =
 #ifdef CGAL_LINKED_WITH_TBB
       true;
