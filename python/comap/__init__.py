@@ -17,7 +17,7 @@ import numpy as _np
 
 from . import _comap
 
-__all__ = ["match", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
+__all__ = ["match", "Shape", "match_shapes", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
            "inconsistent_vertices"]
 
 #: Whether the library runs its parallel code paths (Intel TBB), on every core by default.
@@ -96,6 +96,59 @@ def match(V1, F1, V2, F2, init=None, landmarks=None):
     V2 = _points(V2, "V2")
     F1 = _indices(F1, "F1", 2, 3)
     F2 = _indices(F2, "F2", 2, 3)
+    maps, landmarks = _inputs(init, landmarks)
+    return _comap.match(V1, F1, V2, F2, maps, landmarks)
+
+
+class Shape:
+    """A mesh prepared once for matching against many: its Laplace-Beltrami spectrum, its
+    descriptors, its geodesic distance oracle and the automatic initialisation's data, computed
+    when the Shape is made (most of the time of a ``match``).
+
+        >>> template = comap.Shape(V0, F0, name="template")
+        >>> for V, F in scans:
+        ...     map_12, map_21, info = comap.match_shapes(template, comap.Shape(V, F))
+
+    ``V``, ``F``: as for ``match``. ``name`` names the mesh in error messages. Raises
+    ``ValueError`` as ``match`` does for a mesh it refuses.
+    """
+
+    def __init__(self, V, F, name="mesh"):
+        self.V = _points(V, "V")
+        self.F = _indices(F, "F", 2, 3)
+        self.V.flags.writeable = False
+        self.F.flags.writeable = False
+        self.name = str(name)
+        self._shape = _comap.Shape(self.V, self.F, self.name)
+
+    @property
+    def number_of_vertices(self):
+        """The number of vertices."""
+        return self._shape.number_of_vertices
+
+    @property
+    def preparation_seconds(self):
+        """Seconds spent preparing the shape, per part (mesh, spectrum, descriptors, distances,
+        initialization) and in total."""
+        return self._shape.preparation_seconds
+
+    def __repr__(self):
+        return f"comap.Shape({self.name!r}, {self.number_of_vertices} vertices, {len(self.F)} triangles)"
+
+
+def match_shapes(shape_1, shape_2, init=None, landmarks=None):
+    """``match`` on two prepared shapes (``Shape``): the same maps as ``match`` on their arrays,
+    without preparing the shapes again. ``init`` and ``landmarks`` and the returned
+    ``(map_12, map_21, info)`` are as for ``match``; ``info["stage_seconds"]["preparation"]`` is 0.
+    A shape can be matched by several threads at once (the C++ code runs without the GIL)."""
+    for k, s in (("shape_1", shape_1), ("shape_2", shape_2)):
+        if not isinstance(s, Shape):
+            raise TypeError(f"{k} must be a comap.Shape, got {type(s).__name__}")
+    maps, landmarks = _inputs(init, landmarks)
+    return _comap.match_shapes(shape_1._shape, shape_2._shape, maps, landmarks)
+
+
+def _inputs(init, landmarks):
     maps = None
     if init is not None:
         if landmarks is not None:
@@ -106,7 +159,7 @@ def match(V1, F1, V2, F2, init=None, landmarks=None):
                 _indices(init[1], "init[1] (the map 2 -> 1)", 1))
     if landmarks is not None:
         landmarks = _indices(landmarks, "landmarks", 2, 2, "vertex pairs")
-    return _comap.match(V1, F1, V2, F2, maps, landmarks)
+    return maps, landmarks
 
 
 def _map(A, name):

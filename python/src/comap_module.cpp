@@ -5,6 +5,7 @@
 // arrays. The Python half (comap/__init__.py) converts array-likes to the contiguous arrays this
 // module takes and documents the API.
 
+#include <CGAL/Surface_mesh_correspondence/Correspondence_shape.h>
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
@@ -20,6 +21,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -163,24 +165,29 @@ py::dict result_dict(const smc::Matching_result& r)
   return d;
 }
 
+/// The landmark pairs of a (k, 2) array.
+std::vector<std::pair<std::size_t, std::size_t> > landmark_pairs(const std::optional<Index_array>& landmarks)
+{
+  std::vector<std::pair<std::size_t, std::size_t> > pairs;
+  if(!landmarks) return pairs;
+  const auto l = landmarks->unchecked<2>();
+  for(py::ssize_t k = 0; k < l.shape(0); ++k)
+  {
+    if(l(k, 0) < 0 || l(k, 1) < 0)
+      throw smc::Invalid_parameter_error("landmark " + std::to_string(k) + " (" + std::to_string(l(k, 0)) + ", " +
+                                         std::to_string(l(k, 1)) + ") has a negative vertex index");
+    pairs.emplace_back(std::size_t(l(k, 0)), std::size_t(l(k, 1)));
+  }
+  return pairs;
+}
+
 py::tuple match(const Points_array& v1, const Index_array& f1, const Points_array& v2, const Index_array& f2,
                 const std::optional<std::pair<Index_array, Index_array> >& init, const std::optional<Index_array>& landmarks)
 {
   Mesh m1 = mesh_of_arrays(v1, f1, "mesh 1");
   Mesh m2 = mesh_of_arrays(v2, f2, "mesh 2");
   const std::size_t n1 = num_vertices(m1), n2 = num_vertices(m2);
-  std::vector<std::pair<std::size_t, std::size_t> > pairs;
-  if(landmarks)
-  {
-    const auto l = landmarks->unchecked<2>();
-    for(py::ssize_t k = 0; k < l.shape(0); ++k)
-    {
-      if(l(k, 0) < 0 || l(k, 1) < 0)
-        throw smc::Invalid_parameter_error("landmark " + std::to_string(k) + " (" + std::to_string(l(k, 0)) + ", " +
-                                           std::to_string(l(k, 1)) + ") has a negative vertex index");
-      pairs.emplace_back(std::size_t(l(k, 0)), std::size_t(l(k, 1)));
-    }
-  }
+  const std::vector<std::pair<std::size_t, std::size_t> > pairs = landmark_pairs(landmarks);
   Vertex_vertex_map out12 = m1.add_property_map<Vertex, Vertex>("v:comap_out").first;
   Vertex_vertex_map out21 = m2.add_property_map<Vertex, Vertex>("v:comap_out").first;
   smc::Matching_result r;
@@ -198,6 +205,75 @@ py::tuple match(const Points_array& v1, const Index_array& f1, const Points_arra
     r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, np);
   }
   return py::make_tuple(index_array(m1, out12), index_array(m2, out21), result_dict(r));
+}
+
+// ------------------------------------------------------------------------------ prepared shapes
+
+smc::Vertex_index_map_vector index_vector(const Index_array& a, const std::string& what)
+{
+  const auto m = a.unchecked<1>();
+  smc::Vertex_index_map_vector out(std::size_t(m.shape(0)));
+  for(py::ssize_t i = 0; i < m.shape(0); ++i)
+  {
+    if(m(i) < 0)
+      throw smc::Invalid_map_error(what + ": entry " + std::to_string(i) + " is " + std::to_string(m(i)) +
+                                   ", not a vertex index");
+    out[std::size_t(i)] = std::size_t(m(i));
+  }
+  return out;
+}
+
+
+typedef smc::Correspondence_shape<Mesh, Concurrency> Correspondence_shape;
+
+/// A shape prepared once (spectrum, descriptors, distance oracle, the initialisation's data) for
+/// matching against many.
+struct Shape
+{
+  Mesh mesh;
+  std::unique_ptr<Correspondence_shape> shape;
+  std::string name;
+
+  Shape(const Points_array& v, const Index_array& f, const std::string& n) : mesh(mesh_of_arrays(v, f, n)), name(n)
+  {
+    py::gil_scoped_release release;
+    shape = std::make_unique<Correspondence_shape>(mesh, smc::parameters::default_values(), n);
+  }
+  std::size_t number_of_vertices() const { return shape->number_of_vertices(); }
+  py::dict preparation_seconds() const
+  {
+    const smc::Shape_preprocessing_times& t = shape->preprocessing_times();
+    py::dict d;
+    d["mesh"] = t.mesh;
+    d["spectrum"] = t.spectrum;
+    d["descriptors"] = t.descriptors;
+    d["distances"] = t.distances;
+    d["initialization"] = t.initialization;
+    d["total"] = t.total();
+    return d;
+  }
+};
+
+py::tuple match_prepared(const Shape& s1, const Shape& s2, const std::optional<std::pair<Index_array, Index_array> >& init,
+                         const std::optional<Index_array>& landmarks)
+{
+  const std::vector<std::pair<std::size_t, std::size_t> > pairs = landmark_pairs(landmarks);
+  smc::Vertex_index_map_vector x12, x21;
+  smc::Matching_result r;
+  const auto np = smc::parameters::landmarks(pairs);
+  if(init)
+  {
+    const smc::Vertex_index_map_vector a = index_vector(init->first, "init[0] (the map 1 -> 2)"),
+                                       b = index_vector(init->second, "init[1] (the map 2 -> 1)");
+    py::gil_scoped_release release;
+    r = smc::match_shapes<Concurrency>(*s1.shape, *s2.shape, x12, x21, smc::parameters::initial_maps(a, b, np));
+  }
+  else
+  {
+    py::gil_scoped_release release;
+    r = smc::match_shapes<Concurrency>(*s1.shape, *s2.shape, x12, x21, np);
+  }
+  return py::make_tuple(index_array(x12), index_array(x21), result_dict(r));
 }
 
 // ------------------------------------------------------------------------------ files
@@ -221,20 +297,6 @@ py::tuple read_mesh(const std::string& file)
   for(std::size_t k = 0; k < polygons.size(); ++k)
     for(int c = 0; c < 3; ++c) pf(py::ssize_t(k), c) = std::int64_t(polygons[k][std::size_t(c)]);
   return py::make_tuple(v, f);
-}
-
-smc::Vertex_index_map_vector index_vector(const Index_array& a, const std::string& what)
-{
-  const auto m = a.unchecked<1>();
-  smc::Vertex_index_map_vector out(std::size_t(m.shape(0)));
-  for(py::ssize_t i = 0; i < m.shape(0); ++i)
-  {
-    if(m(i) < 0)
-      throw smc::Invalid_map_error(what + ": entry " + std::to_string(i) + " is " + std::to_string(m(i)) +
-                                   ", not a vertex index");
-    out[std::size_t(i)] = std::size_t(m(i));
-  }
-  return out;
 }
 
 py::array_t<std::int64_t> read_map(const std::string& file, int index_base)
@@ -339,6 +401,13 @@ PYBIND11_MODULE(_comap, m)
   m.def("match", &match, py::arg("V1"), py::arg("F1"), py::arg("V2"), py::arg("F2"), py::arg("init") = py::none(),
         py::arg("landmarks") = py::none(),
         "match(V1, F1, V2, F2, init, landmarks) -> (map_12, map_21, info): see comap.match.");
+  py::class_<Shape>(m, "Shape")
+      .def(py::init<const Points_array&, const Index_array&, const std::string&>(), py::arg("V"), py::arg("F"),
+           py::arg("name"))
+      .def_property_readonly("number_of_vertices", &Shape::number_of_vertices)
+      .def_property_readonly("preparation_seconds", &Shape::preparation_seconds);
+  m.def("match_shapes", &match_prepared, py::arg("shape_1"), py::arg("shape_2"), py::arg("init") = py::none(),
+        py::arg("landmarks") = py::none());
   m.def("read_mesh", &read_mesh, py::arg("file"));
   m.def("read_map", &read_map, py::arg("file"), py::arg("index_base"));
   m.def("write_map", &write_map, py::arg("file"), py::arg("map"), py::arg("index_base"));
