@@ -11,17 +11,75 @@ indices: ``map_12[i]`` is the vertex of mesh 2 matched to vertex i of mesh 1.
     >>> map_12, map_21, info = comap.match(V1, F1, V2, F2)
 """
 
+import numbers as _numbers
 import os as _os
 
 import numpy as _np
 
 from . import _comap
 
-__all__ = ["match", "Shape", "match_shapes", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
+__all__ = ["match", "Shape", "match_shapes", "Stopped", "settings", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
            "inconsistent_vertices"]
 
 #: Whether the library runs its parallel code paths (Intel TBB), on every core by default.
 has_tbb = _comap.has_tbb
+
+#: Raised when a ``progress`` callback returned False (a RuntimeError).
+Stopped = _comap.Stopped
+
+_REGISTRY = {s["name"]: s for s in _comap.settings_registry()}
+
+
+def settings():
+    """The settings registry: a dict from each setting's name to what the registry says of it
+    (``type``, ``default``, ``default_for_given_maps``, ``range``, ``stage``, ``documentation``),
+    in registry order. doc/settings.md explains them; ``comap settings`` prints them as a file."""
+    return {name: {k: v for k, v in s.items() if k != "name"} for name, s in _REGISTRY.items()}
+
+
+def _setting_value(name, v):
+    if isinstance(v, (bool, _np.bool_)):
+        return bool(v)
+    if isinstance(v, str):
+        return v
+    if isinstance(v, _numbers.Real):
+        return float(v)
+    if isinstance(v, (list, tuple, _np.ndarray)):
+        items = list(v)
+        if all(isinstance(x, _numbers.Real) and not isinstance(x, (bool, _np.bool_)) for x in items):
+            return [float(x) for x in items]
+        if all(isinstance(x, (list, tuple, _np.ndarray)) for x in items):
+            return [[float(y) for y in x] for x in items]
+    raise ValueError(f"setting {name}: {v!r} is not a number, a Boolean, a word or a list of numbers")
+
+
+def _settings(given, shape=False):
+    """The settings dict as the C++ half takes it; unknown names are refused by the library,
+    naming the closest valid one."""
+    if given is None:
+        return {}
+    if not isinstance(given, dict):
+        raise ValueError(f"settings must be a dict from setting names to values, got {type(given).__name__}")
+    out = {}
+    for name, v in given.items():
+        if not shape and name in _REGISTRY and _REGISTRY[name]["stage"] == "preparation":
+            raise ValueError(f"{name} is a setting of the shapes' preparation: give it to comap.Shape(..., settings=)")
+        out[str(name)] = _setting_value(name, v)
+    return out
+
+
+def _threads(threads):
+    if threads is None:
+        return 0
+    if isinstance(threads, bool) or not isinstance(threads, _numbers.Integral) or threads < 1:
+        raise ValueError(f"threads must be a positive integer or None (every core), got {threads!r}")
+    return int(threads)
+
+
+def _progress(progress):
+    if progress is not None and not callable(progress):
+        raise ValueError("progress must be a callable progress(stage, fraction) or None")
+    return progress
 
 
 def _points(V, name):
@@ -45,7 +103,7 @@ def _indices(A, name, ndim, columns=None, what="vertex indices"):
     return _np.ascontiguousarray(a, dtype=_np.int64)
 
 
-def match(V1, F1, V2, F2, init=None, landmarks=None):
+def match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None, progress=None):
     """Computes dense point-to-point maps between two triangle meshes, in both directions.
 
     The whole pipeline of the library's ``match_shapes()``: automatic initial maps (functional
@@ -68,6 +126,17 @@ def match(V1, F1, V2, F2, init=None, landmarks=None):
     landmarks : array_like, shape (k, 2), optional
         Known correspondences (vertex of mesh 1, vertex of mesh 2), 0-based, that guide the
         automatic initial maps (not with ``init``).
+    settings : dict, optional
+        Expert settings by registry name (``comap.settings()``, doc/settings.md), e.g.
+        ``{"number_of_candidates": 60, "ring_schedule": [3, 2, 1]}``. An unknown name raises a
+        ValueError naming the closest valid one; a value out of its range names the range.
+    threads : int, optional
+        The number of threads of this run (default: every core).
+    progress : callable, optional
+        ``progress(stage, fraction)``, called as each stage ("preparation", "initialization",
+        "refinement", ...) begins (0), progresses and ends (1), from the run's threads, one call
+        at a time. Returning False stops the run (``comap.Stopped``); an exception it raises stops
+        the run and is re-raised. Ctrl-C stops the run too (KeyboardInterrupt), at its next event.
 
     Returns
     -------
@@ -91,13 +160,16 @@ def match(V1, F1, V2, F2, init=None, landmarks=None):
         mesh and the vertex or face.
     RuntimeError
         A numerical failure (e.g. an eigensolver that does not converge).
+    comap.Stopped
+        The ``progress`` callback returned False.
     """
     V1 = _points(V1, "V1")
     V2 = _points(V2, "V2")
     F1 = _indices(F1, "F1", 2, 3)
     F2 = _indices(F2, "F2", 2, 3)
     maps, landmarks = _inputs(init, landmarks)
-    return _comap.match(V1, F1, V2, F2, maps, landmarks)
+    return _comap.match(V1, F1, V2, F2, maps, landmarks, _settings(settings, shape=True), _threads(threads),
+                        _progress(progress))
 
 
 class Shape:
@@ -109,17 +181,19 @@ class Shape:
         >>> for V, F in scans:
         ...     map_12, map_21, info = comap.match_shapes(template, comap.Shape(V, F))
 
-    ``V``, ``F``: as for ``match``. ``name`` names the mesh in error messages. Raises
-    ``ValueError`` as ``match`` does for a mesh it refuses.
+    ``V``, ``F``: as for ``match``. ``name`` names the mesh in error messages. ``settings``: the
+    settings of the preparation (and those of the initialisation its data depend on), by registry
+    name as for ``match``; the settings of stage "preparation" can only be given here.
+    ``threads``: as for ``match``. Raises ``ValueError`` as ``match`` does for a mesh it refuses.
     """
 
-    def __init__(self, V, F, name="mesh"):
+    def __init__(self, V, F, name="mesh", settings=None, threads=None):
         self.V = _points(V, "V")
         self.F = _indices(F, "F", 2, 3)
         self.V.flags.writeable = False
         self.F.flags.writeable = False
         self.name = str(name)
-        self._shape = _comap.Shape(self.V, self.F, self.name)
+        self._shape = _comap.Shape(self.V, self.F, self.name, _settings(settings, shape=True), _threads(threads))
 
     @property
     def number_of_vertices(self):
@@ -136,16 +210,19 @@ class Shape:
         return f"comap.Shape({self.name!r}, {self.number_of_vertices} vertices, {len(self.F)} triangles)"
 
 
-def match_shapes(shape_1, shape_2, init=None, landmarks=None):
-    """``match`` on two prepared shapes (``Shape``): the same maps as ``match`` on their arrays,
-    without preparing the shapes again. ``init`` and ``landmarks`` and the returned
-    ``(map_12, map_21, info)`` are as for ``match``; ``info["stage_seconds"]["preparation"]`` is 0.
-    A shape can be matched by several threads at once (the C++ code runs without the GIL)."""
+def match_shapes(shape_1, shape_2, init=None, landmarks=None, settings=None, threads=None, progress=None):
+    """``match`` on two prepared shapes (``Shape``): the same maps as ``match`` on their arrays
+    with the same settings, without preparing the shapes again. ``init``, ``landmarks``,
+    ``settings`` (except those of stage "preparation", given to ``Shape``), ``threads``,
+    ``progress`` and the returned ``(map_12, map_21, info)`` are as for ``match``;
+    ``info["stage_seconds"]["preparation"]`` is 0. A shape can be matched by several threads at
+    once (the C++ code runs without the GIL)."""
     for k, s in (("shape_1", shape_1), ("shape_2", shape_2)):
         if not isinstance(s, Shape):
             raise TypeError(f"{k} must be a comap.Shape, got {type(s).__name__}")
     maps, landmarks = _inputs(init, landmarks)
-    return _comap.match_shapes(shape_1._shape, shape_2._shape, maps, landmarks)
+    return _comap.match_shapes(shape_1._shape, shape_2._shape, maps, landmarks, _settings(settings),
+                               _threads(threads), _progress(progress))
 
 
 def _inputs(init, landmarks):

@@ -20,7 +20,17 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/task_arena.h>
+#endif
+
 #include <array>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <map>
+#include <mutex>
+#include <thread>
 #include <memory>
 #include <cstdint>
 #include <optional>
@@ -165,6 +175,125 @@ py::dict result_dict(const smc::Matching_result& r)
   return d;
 }
 
+// ------------------------------------------------------------------------------ running
+
+/// The settings of a run, by registry name (values already canonical: bool, float, str, lists of
+/// floats, lists of lists of floats).
+typedef std::map<std::string, smc::Setting_value> Settings_dict;
+
+smc::Matching_settings matching_settings(const Settings_dict& given)
+{
+  smc::Matching_settings settings;
+  for(const auto& [name, value] : given) settings.set(name, value);
+  return settings;
+}
+
+/// The visitor of a run from Python: forwards the stages' progress to the callback (with the
+/// GIL) and stops the run when the callback returns False or raises, or when Ctrl-C was pressed.
+class Python_visitor : public smc::Default_matching_visitor
+{
+public:
+  explicit Python_visitor(py::object callback) : callback_(std::move(callback)) {}
+
+  bool stage_begun(smc::Matching_stage s) { return event(s, 0.0); }
+  bool progress(smc::Matching_stage s, double fraction) { return event(s, fraction); }
+  bool stage_ended(smc::Matching_stage s, double) { return event(s, 1.0); }
+  bool trws_iteration(int, std::size_t, double, double) { return !interrupted; }
+  bool refinement_step(const smc::Refinement_step&) { return !interrupted; }
+
+  std::atomic<bool> interrupted{false};
+  bool stopped_by_callback = false;
+  std::optional<py::error_already_set> callback_error;
+
+private:
+  bool event(smc::Matching_stage s, double fraction)
+  {
+    if(interrupted) return false;
+    if(callback_.is_none()) return true;
+    py::gil_scoped_acquire gil;
+    try
+    {
+      const py::object answer = callback_(smc::to_string(s), fraction);
+      if(answer.is(py::bool_(false)))
+      {
+        stopped_by_callback = true;
+        return false;
+      }
+    }
+    catch(py::error_already_set& e)
+    {
+      callback_error.emplace(std::move(e));
+      return false;
+    }
+    return true;
+  }
+
+  py::object callback_;
+};
+
+/// Runs `f()` (a matching call, with the GIL held by the caller) on another thread, in an arena of
+/// `threads` threads (0: every core), while this thread waits without the GIL and checks for
+/// Ctrl-C every 50 ms: Ctrl-C stops the run at its next event and raises KeyboardInterrupt; a
+/// callback that returned False raises comap.Stopped, one that raised re-raises its exception.
+template <typename F>
+auto run_from_python(Python_visitor& visitor, int threads, const F& f) -> decltype(f())
+{
+  decltype(f()) result{};
+  std::exception_ptr error;
+  std::optional<py::error_already_set> interrupt;
+  {
+    py::gil_scoped_release release;
+    std::mutex mutex;
+    std::condition_variable finished;
+    bool done = false;
+    std::thread worker([&] {
+      try
+      {
+#ifdef CGAL_LINKED_WITH_TBB
+        if(threads > 0)
+        {
+          tbb::task_arena arena(threads);
+          arena.execute([&] { result = f(); });
+        }
+        else
+          result = f();
+#else
+        (void)threads;
+        result = f();
+#endif
+      }
+      catch(...)
+      {
+        error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      done = true;
+      finished.notify_all();
+    });
+    std::unique_lock<std::mutex> lock(mutex);
+    while(!finished.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; }))
+    {
+      if(interrupt) continue;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire gil;
+        if(PyErr_CheckSignals() != 0)
+        {
+          interrupt.emplace();
+          visitor.interrupted = true;
+        }
+      }
+      lock.lock();
+    }
+    lock.unlock();
+    worker.join();
+  }
+  if(interrupt) throw *interrupt;
+  if(visitor.callback_error) throw *visitor.callback_error;
+  if(error) std::rethrow_exception(error);
+  return result;
+}
+
 /// The landmark pairs of a (k, 2) array.
 std::vector<std::pair<std::size_t, std::size_t> > landmark_pairs(const std::optional<Index_array>& landmarks)
 {
@@ -182,28 +311,30 @@ std::vector<std::pair<std::size_t, std::size_t> > landmark_pairs(const std::opti
 }
 
 py::tuple match(const Points_array& v1, const Index_array& f1, const Points_array& v2, const Index_array& f2,
-                const std::optional<std::pair<Index_array, Index_array> >& init, const std::optional<Index_array>& landmarks)
+                const std::optional<std::pair<Index_array, Index_array> >& init, const std::optional<Index_array>& landmarks,
+                const Settings_dict& settings_dict, int threads, py::object progress)
 {
   Mesh m1 = mesh_of_arrays(v1, f1, "mesh 1");
   Mesh m2 = mesh_of_arrays(v2, f2, "mesh 2");
   const std::size_t n1 = num_vertices(m1), n2 = num_vertices(m2);
   const std::vector<std::pair<std::size_t, std::size_t> > pairs = landmark_pairs(landmarks);
+  const smc::Matching_settings settings = matching_settings(settings_dict);
   Vertex_vertex_map out12 = m1.add_property_map<Vertex, Vertex>("v:comap_out").first;
   Vertex_vertex_map out21 = m2.add_property_map<Vertex, Vertex>("v:comap_out").first;
+  Python_visitor visitor(std::move(progress));
+  const auto np = smc::parameters::matching_settings(
+      settings, smc::parameters::landmarks(pairs, smc::parameters::visitor(std::ref(visitor))));
   smc::Matching_result r;
-  const auto np = smc::parameters::landmarks(pairs);
   if(init)
   {
     const Vertex_vertex_map in12 = vertex_map(m1, "v:comap_in", init->first, n2, "init[0] (the map 1 -> 2)");
     const Vertex_vertex_map in21 = vertex_map(m2, "v:comap_in", init->second, n1, "init[1] (the map 2 -> 1)");
-    py::gil_scoped_release release;
-    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, smc::parameters::initial_maps(in12, in21, np));
+    r = run_from_python(visitor, threads, [&] {
+      return smc::match_shapes<Concurrency>(m1, m2, out12, out21, smc::parameters::initial_maps(in12, in21, np));
+    });
   }
   else
-  {
-    py::gil_scoped_release release;
-    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, np);
-  }
+    r = run_from_python(visitor, threads, [&] { return smc::match_shapes<Concurrency>(m1, m2, out12, out21, np); });
   return py::make_tuple(index_array(m1, out12), index_array(m2, out21), result_dict(r));
 }
 
@@ -234,10 +365,14 @@ struct Shape
   std::unique_ptr<Correspondence_shape> shape;
   std::string name;
 
-  Shape(const Points_array& v, const Index_array& f, const std::string& n) : mesh(mesh_of_arrays(v, f, n)), name(n)
+  Shape(const Points_array& v, const Index_array& f, const std::string& n, const Settings_dict& settings, int threads)
+      : mesh(mesh_of_arrays(v, f, n)), name(n)
   {
-    py::gil_scoped_release release;
-    shape = std::make_unique<Correspondence_shape>(mesh, smc::parameters::default_values(), n);
+    const smc::Matching_settings s = matching_settings(settings);
+    Python_visitor visitor{py::none()};
+    shape = run_from_python(visitor, threads, [&] {
+      return std::make_unique<Correspondence_shape>(mesh, smc::parameters::matching_settings(s), n);
+    });
   }
   std::size_t number_of_vertices() const { return shape->number_of_vertices(); }
   py::dict preparation_seconds() const
@@ -255,25 +390,47 @@ struct Shape
 };
 
 py::tuple match_prepared(const Shape& s1, const Shape& s2, const std::optional<std::pair<Index_array, Index_array> >& init,
-                         const std::optional<Index_array>& landmarks)
+                         const std::optional<Index_array>& landmarks, const Settings_dict& settings_dict, int threads,
+                         py::object progress)
 {
   const std::vector<std::pair<std::size_t, std::size_t> > pairs = landmark_pairs(landmarks);
+  const smc::Matching_settings settings = matching_settings(settings_dict);
   smc::Vertex_index_map_vector x12, x21;
+  Python_visitor visitor(std::move(progress));
+  const auto np = smc::parameters::matching_settings(
+      settings, smc::parameters::landmarks(pairs, smc::parameters::visitor(std::ref(visitor))));
   smc::Matching_result r;
-  const auto np = smc::parameters::landmarks(pairs);
   if(init)
   {
     const smc::Vertex_index_map_vector a = index_vector(init->first, "init[0] (the map 1 -> 2)"),
                                        b = index_vector(init->second, "init[1] (the map 2 -> 1)");
-    py::gil_scoped_release release;
-    r = smc::match_shapes<Concurrency>(*s1.shape, *s2.shape, x12, x21, smc::parameters::initial_maps(a, b, np));
+    r = run_from_python(visitor, threads, [&] {
+      return smc::match_shapes<Concurrency>(*s1.shape, *s2.shape, x12, x21, smc::parameters::initial_maps(a, b, np));
+    });
   }
   else
-  {
-    py::gil_scoped_release release;
-    r = smc::match_shapes<Concurrency>(*s1.shape, *s2.shape, x12, x21, np);
-  }
+    r = run_from_python(visitor, threads,
+                        [&] { return smc::match_shapes<Concurrency>(*s1.shape, *s2.shape, x12, x21, np); });
   return py::make_tuple(index_array(x12), index_array(x21), result_dict(r));
+}
+
+/// The registry: one dict per setting, in registry order.
+py::list settings_registry()
+{
+  py::list out;
+  for(const smc::Setting_info& i : smc::matching_settings_registry())
+  {
+    py::dict d;
+    d["name"] = i.name;
+    d["type"] = i.type;
+    d["default"] = i.default_text;
+    d["default_for_given_maps"] = i.given_default_text;
+    d["range"] = i.range_text;
+    d["stage"] = smc::to_string(i.stage);
+    d["documentation"] = i.documentation;
+    out.append(d);
+  }
+  return out;
 }
 
 // ------------------------------------------------------------------------------ files
@@ -374,6 +531,7 @@ std::size_t inconsistent_vertices(const Index_array& map_12, const Index_array& 
 PYBIND11_MODULE(_comap, m)
 {
   m.doc() = "The C++ half of the comap package (see comap.match).";
+  static py::exception<smc::Matching_stopped> stopped(m, "Stopped", PyExc_RuntimeError);
   // The library's exceptions: bad input is a ValueError, files an OSError, the rest a RuntimeError;
   // the message is the library's.
   py::register_exception_translator([](std::exception_ptr p) {
@@ -384,6 +542,10 @@ PYBIND11_MODULE(_comap, m)
     catch(const smc::IO_error& e)
     {
       PyErr_SetString(PyExc_OSError, e.what());
+    }
+    catch(const smc::Matching_stopped& e)
+    {
+      PyErr_SetString(stopped.ptr(), e.what());
     }
     catch(const smc::Invalid_mesh_error& e)
     {
@@ -398,16 +560,18 @@ PYBIND11_MODULE(_comap, m)
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
-  m.def("match", &match, py::arg("V1"), py::arg("F1"), py::arg("V2"), py::arg("F2"), py::arg("init") = py::none(),
-        py::arg("landmarks") = py::none(),
-        "match(V1, F1, V2, F2, init, landmarks) -> (map_12, map_21, info): see comap.match.");
+  m.def("match", &match, py::arg("V1"), py::arg("F1"), py::arg("V2"), py::arg("F2"), py::arg("init"),
+        py::arg("landmarks"), py::arg("settings"), py::arg("threads"), py::arg("progress"),
+        "match(V1, F1, V2, F2, init, landmarks, settings, threads, progress) -> (map_12, map_21, info): see "
+        "comap.match.");
+  m.def("settings_registry", &settings_registry);
   py::class_<Shape>(m, "Shape")
-      .def(py::init<const Points_array&, const Index_array&, const std::string&>(), py::arg("V"), py::arg("F"),
-           py::arg("name"))
+      .def(py::init<const Points_array&, const Index_array&, const std::string&, const Settings_dict&, int>(),
+           py::arg("V"), py::arg("F"), py::arg("name"), py::arg("settings"), py::arg("threads"))
       .def_property_readonly("number_of_vertices", &Shape::number_of_vertices)
       .def_property_readonly("preparation_seconds", &Shape::preparation_seconds);
-  m.def("match_shapes", &match_prepared, py::arg("shape_1"), py::arg("shape_2"), py::arg("init") = py::none(),
-        py::arg("landmarks") = py::none());
+  m.def("match_shapes", &match_prepared, py::arg("shape_1"), py::arg("shape_2"), py::arg("init"),
+        py::arg("landmarks"), py::arg("settings"), py::arg("threads"), py::arg("progress"));
   m.def("read_mesh", &read_mesh, py::arg("file"));
   m.def("read_map", &read_map, py::arg("file"), py::arg("index_base"));
   m.def("write_map", &write_map, py::arg("file"), py::arg("map"), py::arg("index_base"));

@@ -33,7 +33,7 @@ def test_documented_install(tmp_path):
     out = subprocess.run([str(venv / "bin" / "python"), "-c", CHECK.format(tests=str(ROOT / "python" / "tests"))],
                          check=True, timeout=300, env=env, cwd=tmp_path, capture_output=True, text=True).stdout
     assert out.splitlines()[0].startswith(str(venv))  # the installed module, not the build folder's
-    assert "match(V1, F1, V2, F2, init=None, landmarks=None)" in out
+    assert "match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None, progress=None)" in out
     assert "Computes dense point-to-point maps" in out
     identity = float(out.split("identity")[1])
     assert identity > 0.9  # a shape matched with itself: the identity, nearly everywhere
