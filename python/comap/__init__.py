@@ -26,6 +26,8 @@ has_tbb = _comap.has_tbb
 
 #: Raised when a ``progress`` callback returned False (a RuntimeError).
 Stopped = _comap.Stopped
+Stopped.__doc__ = """Raised by match and match_shapes when their progress callback returned False:
+the run stopped at that event, and no maps were returned (a RuntimeError)."""
 
 _REGISTRY = {s["name"]: s for s in _comap.settings_registry()}
 

@@ -32,7 +32,10 @@ def test_documented_install(tmp_path):
                     str(ROOT / "python")], check=True, timeout=1200, env=env, cwd=ROOT)
     out = subprocess.run([str(venv / "bin" / "python"), "-c", CHECK.format(tests=str(ROOT / "python" / "tests"))],
                          check=True, timeout=300, env=env, cwd=tmp_path, capture_output=True, text=True).stdout
-    assert out.splitlines()[0].startswith(str(venv))  # the installed module, not the build folder's
+    installed = out.splitlines()[0]
+    assert installed.startswith(str(venv))  # the installed module, not the build folder's
+    package = pathlib.Path(installed).parent
+    assert (package / "__init__.pyi").exists() and (package / "py.typed").exists()
     assert "match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None, progress=None)" in out
     assert "Computes dense point-to-point maps" in out
     identity = float(out.split("identity")[1])
