@@ -20,6 +20,7 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -187,6 +188,36 @@ std::string shell_quote(const std::string& s)
   return out + "'";
 }
 
+/// Extracts data/meshes/homer.off of libcgal-demo's data archive into `file`, atomically (a
+/// temporary file renamed into place only when tar succeeded). False when it cannot.
+bool extract_homer(const std::string& file)
+{
+  const std::string command = "tar -xzf " + shell_quote(cgal_demo_data) + " -O data/meshes/homer.off 2>/dev/null";
+  FILE* tar = ::popen(command.c_str(), "r");
+  if(!tar) return false;
+  try
+  {
+    smc::Atomic_output_file out(file);
+    char buffer[1 << 16];
+    std::size_t n = 0, total = 0;
+    while((n = std::fread(buffer, 1, sizeof(buffer), tar)) > 0)
+    {
+      out.stream().write(buffer, std::streamsize(n));
+      total += n;
+    }
+    const int status = ::pclose(tar);
+    tar = nullptr;
+    if(status != 0 || total == 0) return false;
+    out.commit();
+    return true;
+  }
+  catch(const smc::IO_error&)
+  {
+    if(tar) ::pclose(tar);
+    return false;
+  }
+}
+
 struct Quality
 {
   smc::Error_statistics e12, e21;
@@ -255,9 +286,7 @@ int run_demo(int argc, char** argv)
   {
     source_name = "homer.off";
     const std::string file = out + "/" + source_name;
-    const std::string command = "tar -xzf " + shell_quote(cgal_demo_data) + " -O data/meshes/homer.off > " +
-                                shell_quote(file) + " 2>/dev/null";
-    if(std::system(command.c_str()) == 0 && file_exists(file))
+    if(extract_homer(file))
     {
       try
       {
