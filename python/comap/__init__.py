@@ -18,7 +18,7 @@ import numpy as _np
 
 from . import _comap
 
-__all__ = ["match", "Shape", "match_shapes", "Stopped", "settings", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
+__all__ = ["match", "Shape", "match_shapes", "Stopped", "settings", "check_settings", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
            "inconsistent_vertices"]
 
 #: Whether the library runs its parallel code paths (Intel TBB), on every core by default.
@@ -37,6 +37,13 @@ def settings():
     (``type``, ``default``, ``default_for_given_maps``, ``range``, ``stage``, ``documentation``),
     in registry order. doc/settings.md explains them; ``comap settings`` prints them as a file."""
     return {name: {k: v for k, v in s.items() if k != "name"} for name, s in _REGISTRY.items()}
+
+
+def check_settings(settings):
+    """Checks a dict of settings by registry name without running anything: raises ValueError for
+    an unknown name (naming the closest valid one), a value of the wrong type or out of its
+    range."""
+    _comap.check_settings(_settings(settings, shape=True))
 
 
 def _setting_value(name, v):

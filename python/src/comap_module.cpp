@@ -565,6 +565,7 @@ PYBIND11_MODULE(_comap, m)
         "match(V1, F1, V2, F2, init, landmarks, settings, threads, progress) -> (map_12, map_21, info): see "
         "comap.match.");
   m.def("settings_registry", &settings_registry);
+  m.def("check_settings", [](const Settings_dict& settings) { matching_settings(settings); }, py::arg("settings"));
   py::class_<Shape>(m, "Shape")
       .def(py::init<const Points_array&, const Index_array&, const std::string&, const Settings_dict&, int>(),
            py::arg("V"), py::arg("F"), py::arg("name"), py::arg("settings"), py::arg("threads"))
