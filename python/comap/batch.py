@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Matching a collection of pairs listed in a CSV file.
 
-    python3 -m comap.batch PAIRS.csv --out DIR [--settings FILE.json] [--threads N] [--index-base 0|1]
+    python3 -m comap.batch PAIRS.csv --out DIR [--workers N | --scheduler tcp://HOST:PORT]
+                           [--settings FILE.json] [--threads N] [--index-base 0|1] [--redo] [--quiet]
 
 PAIRS.csv has a header and one row per pair. Columns (paths relative to the CSV file's folder):
 
@@ -20,6 +21,16 @@ as comap's). Outputs, each written atomically (a killed run loses nothing finish
 - ``DIR/results.csv``: one row per pair, rewritten as each pair ends: ``status`` (``ok`` or
   ``failed``), ``error`` (the message of a failed pair), times, accuracy (with ground truth) and
   consistency figures (see RESULT_COLUMNS).
+
+The pairs run on dask.distributed: by default an embedded LocalCluster with one worker process
+per core and one thread each (the C++ code of each pair then runs on one thread); ``--workers N``
+sets the number of workers, ``--workers 0`` runs the pairs one after the other in this process,
+``--scheduler`` uses an existing cluster as it is. Each worker keeps the shapes it prepared (the
+last 4) and pairs are submitted grouped by source, so that a source shared by several pairs is
+prepared once per worker. A worker that dies costs only its pair, which dask runs again on another
+worker (a pair whose workers keep dying is recorded as failed). A run into a folder that holds a
+previous run's outputs skips the pairs that run finished (status ``ok`` and both maps present);
+``--redo`` matches them again.
 
 Exit status: 0 when every pair is ``ok``; 1 when some pair failed (its row says why; the others
 are done); 2 for a bad command line or pairs file (nothing is matched).
@@ -181,12 +192,14 @@ def _split_settings(settings):
     return shape, run
 
 
-def match_pair(pair, shapes, out_dir, run_settings=None, threads=None, index_base=1):
-    """Matches one pair of a pairs file (a dict of read_pairs()) and writes its maps under
-    ``out_dir/maps``. Returns its row of the results table; a failure is a row with status
-    ``failed`` and the error's message, never an exception (except KeyboardInterrupt)."""
+def match_pair(pair, shapes, run_settings=None, threads=None, index_base=1):
+    """Matches one pair of a pairs file (a dict of read_pairs()). Returns ``(row, map_12, map_21)``:
+    its row of the results table and the maps (None when the pair failed). A failure is a row
+    with status ``failed`` and the error's message, never an exception (except
+    KeyboardInterrupt)."""
     start = time.perf_counter()
     row = {"name": pair["name"], "source": pair["source"], "target": pair["target"], "status": "failed"}
+    m12 = m21 = None
     try:
         s1 = shapes.get(pair["source"])
         s2 = shapes.get(pair["target"])
@@ -197,12 +210,6 @@ def match_pair(pair, shapes, out_dir, run_settings=None, threads=None, index_bas
         t = time.perf_counter()
         m12, m21, info = comap.match_shapes(s1, s2, init=init, settings=run_settings, threads=threads)
         row["match_seconds"] = time.perf_counter() - t
-        maps = os.path.join(out_dir, "maps")
-        os.makedirs(maps, exist_ok=True)
-        row["map_12"] = os.path.join("maps", pair["name"] + "_12.map")
-        row["map_21"] = os.path.join("maps", pair["name"] + "_21.map")
-        comap.write_map(os.path.join(out_dir, row["map_12"]), m12, index_base)
-        comap.write_map(os.path.join(out_dir, row["map_21"]), m21, index_base)
         row["inconsistent_vertices"] = comap.inconsistent_vertices(m12, m21)
         row["cycle_error_1"] = float(comap.cycle_errors(s1.V, s1.F, m12, m21).mean())
         row["cycle_error_2"] = float(comap.cycle_errors(s2.V, s2.F, m21, m12).mean())
@@ -219,35 +226,146 @@ def match_pair(pair, shapes, out_dir, run_settings=None, threads=None, index_bas
         row["status"] = "ok"
     except Exception as e:  # the pair fails, the batch goes on
         row["error"] = " ".join(str(e).split()) or type(e).__name__
+        m12 = m21 = None
     row["seconds"] = time.perf_counter() - start
-    return row
+    return row, m12, m21
 
 
-def run_batch(pairs_file, out_dir, settings=None, threads=None, index_base=1, progress=True):
+#: The prepared shapes of this process (a dask worker's), per preparation settings.
+_PROCESS_SHAPES = {}
+
+
+def _match_on_worker(pair, shape_settings, run_settings, threads, index_base):
+    """A task of the dask engine: match_pair with the shapes this worker prepared before."""
+    hook = os.environ.get("COMAP_BATCH_TEST_DIE_ON")  # test hook: NAME:MARKER kills this worker once
+    if hook:
+        name, marker = hook.split(":", 1)
+        if name == pair["name"] and not os.path.exists(marker):
+            open(marker, "w").close()
+            os._exit(1)
+    key = json.dumps(shape_settings, sort_keys=True)
+    if key not in _PROCESS_SHAPES:
+        _PROCESS_SHAPES[key] = _Shapes(shape_settings, threads)
+    return match_pair(pair, _PROCESS_SHAPES[key], run_settings, threads, index_base)
+
+
+def _previous_rows(results, pairs, out_dir):
+    """The rows of a previous run's results.csv whose pair is done: status ok, same name, source
+    and target, and both map files present."""
+    if not os.path.exists(results):
+        return {}
+    try:
+        with open(results, newline="") as f:
+            old = {r["name"]: r for r in csv.DictReader(f)}
+    except (OSError, csv.Error, KeyError):
+        return {}
+    done = {}
+    for i, p in enumerate(pairs):
+        r = old.get(p["name"])
+        if (r and r.get("status") == "ok" and r.get("source") == p["source"] and r.get("target") == p["target"]
+                and all(r.get(k) and os.path.exists(os.path.join(out_dir, r[k])) for k in ("map_12", "map_21"))):
+            done[i] = r
+    return done
+
+
+def run_batch(pairs_file, out_dir, settings=None, threads=None, index_base=1, progress=True, workers=None,
+              scheduler=None, redo=False):
     """Matches every pair of ``pairs_file`` (see the module's documentation) and writes the maps
     and ``out_dir/results.csv``. Returns the rows of the results table (dicts with the keys of
-    RESULT_COLUMNS). ``settings``: a dict by registry name, as for comap.match; ``threads``: the
-    threads of each run (default every core); ``progress``: a progress bar on stderr. Raises
-    PairsFileError / OSError for a pairs file that cannot be used, before any pair is matched."""
+    RESULT_COLUMNS), in the order of the pairs file.
+
+    - ``settings``: a dict by registry name, as for comap.match;
+    - ``workers``: the engine. None (default): an embedded dask.distributed LocalCluster with one
+      worker process per core, one thread each; N > 0: N such workers; 0: no dask, the pairs one
+      after the other in this process. ``scheduler``: the address of an existing dask cluster
+      ("tcp://HOST:PORT"), used as it is (the meshes must be readable at the same paths on its
+      workers; the outputs are written by this process);
+    - ``threads``: the C++ threads of each pair (default: 1 on dask workers, every core without);
+    - ``redo``: match again the pairs that a previous run into ``out_dir`` finished (by default
+      they are kept and skipped);
+    - ``progress``: a progress bar on stderr.
+
+    Raises PairsFileError / ValueError / OSError for a pairs file or settings that cannot be
+    used, before any pair is matched."""
     pairs = read_pairs(pairs_file)
     shape_settings, run_settings = _split_settings(dict(settings or {}))
+    if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 0):
+        raise ValueError(f"workers must be a non-negative integer, got {workers!r}")
     os.makedirs(out_dir, exist_ok=True)
     results = os.path.join(out_dir, "results.csv")
-    shapes = _Shapes(shape_settings, threads)
-    rows = []
+    rows = [None] * len(pairs)
+    if not redo:
+        for i, r in _previous_rows(results, pairs, out_dir).items():
+            rows[i] = r
+    todo = [i for i in range(len(pairs)) if rows[i] is None]
+    # Pairs that share a source next to each other: a worker reuses the shapes it prepared.
+    todo.sort(key=lambda i: (pairs[i]["source"], pairs[i]["target"]))
     bar = _progress_bar(len(pairs), progress)
+    if bar is not None:
+        bar.update(len(pairs) - len(todo))
+
+    def record(i, result):
+        row, m12, m21 = result
+        if m12 is not None:
+            maps = os.path.join(out_dir, "maps")
+            os.makedirs(maps, exist_ok=True)
+            row["map_12"] = os.path.join("maps", pairs[i]["name"] + "_12.map")
+            row["map_21"] = os.path.join("maps", pairs[i]["name"] + "_21.map")
+            comap.write_map(os.path.join(out_dir, row["map_12"]), m12, index_base)
+            comap.write_map(os.path.join(out_dir, row["map_21"]), m21, index_base)
+        rows[i] = row
+        write_results(results, [r for r in rows if r is not None])
+        if bar is not None:
+            bar.set_postfix_str(pairs[i]["name"], refresh=False)
+            bar.update(1)
+
     try:
-        for pair in pairs:
-            if bar is not None:
-                bar.set_postfix_str(pair["name"], refresh=True)
-            rows.append(match_pair(pair, shapes, out_dir, run_settings, threads, index_base))
-            write_results(results, rows)
-            if bar is not None:
-                bar.update(1)
+        if scheduler is None and workers == 0:
+            shapes = _Shapes(shape_settings, threads)
+            for i in todo:
+                record(i, match_pair(pairs[i], shapes, run_settings, threads, index_base))
+        elif todo:
+            _run_on_dask(pairs, todo, record, shape_settings, run_settings, threads, index_base, workers, scheduler)
     finally:
         if bar is not None:
             bar.close()
     return rows
+
+
+def _run_on_dask(pairs, todo, record, shape_settings, run_settings, threads, index_base, workers, scheduler):
+    import logging
+    import uuid
+
+    from distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                               dashboard_address=None, silence_logs=logging.ERROR)
+        client = Client(cluster)
+    else:
+        client = Client(scheduler)
+    try:
+        run = uuid.uuid4().hex[:8]
+        task_threads = threads if threads is not None else 1
+        futures = {}
+        for i in todo:
+            f = client.submit(_match_on_worker, pairs[i], shape_settings, run_settings, task_threads, index_base,
+                              key=f"comap-pair-{run}-{i}", pure=False)
+            futures[f] = i
+        for f in as_completed(list(futures)):
+            i = futures[f]
+            try:
+                result = f.result()
+            except Exception as e:  # the task itself failed (its worker died too often)
+                row = {"name": pairs[i]["name"], "source": pairs[i]["source"], "target": pairs[i]["target"],
+                       "status": "failed", "error": " ".join(f"{type(e).__name__}: {e}".split())}
+                result = (row, None, None)
+            record(i, result)
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
 
 
 def _progress_bar(total, enabled):
@@ -281,7 +399,14 @@ def main(argv=None):
     parser.add_argument("pairs", help="the pairs file (CSV with a header)")
     parser.add_argument("--out", required=True, metavar="DIR", help="output folder (created if needed)")
     parser.add_argument("--settings", metavar="FILE.json", help="expert settings (the format of comap settings)")
-    parser.add_argument("--threads", type=int, metavar="N", help="threads per pair (default: every core)")
+    parser.add_argument("--workers", type=int, metavar="N",
+                        help="dask workers of the embedded LocalCluster, one thread each (default: one per core; "
+                             "0: no dask, one pair after the other in this process)")
+    parser.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="use this existing dask cluster")
+    parser.add_argument("--threads", type=int, metavar="N",
+                        help="C++ threads per pair (default: 1 on dask workers, every core with --workers 0)")
+    parser.add_argument("--redo", action="store_true",
+                        help="match again the pairs a previous run into DIR finished (default: skip them)")
     parser.add_argument("--index-base", type=int, choices=(0, 1), default=1,
                         help="index of the first vertex in map and correspondence files (default 1)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -289,7 +414,8 @@ def main(argv=None):
     try:
         settings = read_settings(args.settings) if args.settings else None
         rows = run_batch(args.pairs, args.out, settings=settings, threads=args.threads,
-                         index_base=args.index_base, progress=not args.quiet)
+                         index_base=args.index_base, progress=not args.quiet, workers=args.workers,
+                         scheduler=args.scheduler, redo=args.redo)
     except (PairsFileError, ValueError, OSError) as e:
         print(f"comap.batch: {e}", file=sys.stderr)
         return 2
@@ -302,4 +428,7 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    # The dask workers import comap.batch: run its main, not this __main__ module's copy.
+    from comap.batch import main as _main
+
+    sys.exit(_main())

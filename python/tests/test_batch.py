@@ -1,13 +1,17 @@
 # Copyright (c) 2026 The Surface_mesh_correspondence developers.
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The batch runner on 6 generated pairs, one with a corrupt mesh: 5 ok rows with their maps and
-figures, 1 failed row with the mesh's error, exit status 1; maps equal comap.match's; bad pairs
-files and settings stop before any pair."""
+figures, 1 failed row with the mesh's error, exit status 1; maps equal comap.match's, in this
+process and on a dask LocalCluster of 2 workers; a worker killed mid-batch costs only a retry of
+its pair; an interrupted batch, run again, does not redo finished pairs; bad pairs files and
+settings stop before any pair."""
 
 import csv
 import os
+import signal
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -63,14 +67,26 @@ def collection(tmp_path_factory):
     return d
 
 
-@pytest.fixture(scope="module")
-def batch(collection):
-    out = collection / "out"
-    run = subprocess.run([sys.executable, "-m", "comap.batch", str(collection / "pairs.csv"), "--out", str(out)],
-                         capture_output=True, text=True, timeout=900)
+def run_batch(collection, out, *options, env=None):
+    run = subprocess.run([sys.executable, "-m", "comap.batch", str(collection / "pairs.csv"), "--out", str(out),
+                          *options], capture_output=True, text=True, timeout=900, env=env)
     with open(out / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     return run, out, rows
+
+
+@pytest.fixture(scope="module")
+def batch(collection):
+    """The batch in this process, one pair after the other (--workers 0)."""
+    return run_batch(collection, collection / "out", "--workers", "0")
+
+
+@pytest.fixture(scope="module")
+def dask_batch(collection):
+    """The batch on an embedded LocalCluster of 2 workers; the worker that gets the pair s1-s3 dies
+    the first time (a test hook), so that the pair is retried on another worker."""
+    env = dict(os.environ, COMAP_BATCH_TEST_DIE_ON=f"s1-s3:{collection / 'died'}")
+    return run_batch(collection, collection / "out_dask", "--workers", "2", env=env)
 
 
 def test_five_ok_rows_and_one_failed_row(batch):
@@ -98,6 +114,47 @@ def test_five_ok_rows_and_one_failed_row(batch):
     assert len(os.listdir(out / "maps")) == 10
 
 
+def test_dask_workers_give_the_same_results(collection, batch, dask_batch):
+    run, out, rows = dask_batch
+    assert run.returncode == 1, run.stderr
+    assert os.path.exists(collection / "died")  # a worker died during s1-s3 ...
+    assert [r["status"] for r in rows] == ["ok", "ok", "ok", "failed", "ok", "ok"]  # ... and cost nothing
+    assert rows[3]["error"] == batch[2][3]["error"]
+    for r in rows:
+        if r["status"] == "ok":
+            for k in ("map_12", "map_21"):
+                assert (out / r[k]).read_text() == (batch[1] / r[k]).read_text(), r["name"]
+
+
+def test_interrupted_batch_is_resumed(collection, tmp_path):
+    # Kill a batch once two pairs are done; run it again: the finished pairs are kept as they
+    # were (same files, not rewritten), the others are done.
+    out = tmp_path / "out"
+    process = subprocess.Popen([sys.executable, "-m", "comap.batch", str(collection / "pairs.csv"), "--out", str(out),
+                                "--workers", "0", "--quiet"])
+    deadline = time.time() + 300
+    done = []
+    while time.time() < deadline and len(done) < 2 and process.poll() is None:
+        time.sleep(0.02)
+        if (out / "results.csv").exists():
+            with open(out / "results.csv", newline="") as f:
+                done = list(csv.DictReader(f))
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    assert 2 <= len(done) < 6, "the batch ended before it could be interrupted"
+    with open(out / "results.csv", newline="") as f:
+        done = list(csv.DictReader(f))
+    stamps = {r["name"]: (out / r["map_12"]).stat().st_mtime_ns for r in done if r["status"] == "ok"}
+    run, _, rows = run_batch(collection, out, "--workers", "0")
+    assert run.returncode == 1
+    assert [r["status"] for r in rows] == ["ok", "ok", "ok", "failed", "ok", "ok"]
+    for name, stamp in stamps.items():
+        assert (out / "maps" / f"{name}_12.map").stat().st_mtime_ns == stamp, name
+    # --redo matches them again.
+    run, _, rows = run_batch(collection, out, "--workers", "0", "--redo")
+    assert any((out / "maps" / f"{name}_12.map").stat().st_mtime_ns != stamp for name, stamp in stamps.items())
+
+
 def test_maps_are_those_of_match(collection, batch):
     _, out, rows = batch
     for r in (rows[0], rows[1]):
@@ -116,7 +173,7 @@ def test_function_and_settings(collection, tmp_path):
     pairs.write_text(f"name,source,target\nfirst,{collection}/meshes/s0.off,{collection}/meshes/s1.off\n"
                      f"second,{collection}/meshes/s1.off,{collection}/meshes/s0.off\n")
     rows = comap.batch.run_batch(pairs, tmp_path / "out", settings={"use_refinement": False}, threads=1,
-                                 progress=False)
+                                 progress=False, workers=0)
     assert [r["status"] for r in rows] == ["ok", "ok"]
     assert "mean_error_12" not in rows[0]  # no ground truth, no accuracy
     V1, F1 = comap.read_mesh(collection / "meshes" / "s0.off")
