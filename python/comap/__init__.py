@@ -43,7 +43,7 @@ def check_settings(settings):
     """Checks a dict of settings by registry name without running anything: raises ValueError for
     an unknown name (naming the closest valid one), a value of the wrong type or out of its
     range."""
-    _comap.check_settings(_settings(settings, shape=True))
+    _comap.check_settings(_settings(settings, allow_preparation=True))
 
 
 def _setting_value(name, v):
@@ -62,7 +62,7 @@ def _setting_value(name, v):
     raise ValueError(f"setting {name}: {v!r} is not a number, a Boolean, a word or a list of numbers")
 
 
-def _settings(given, shape=False):
+def _settings(given, allow_preparation=False):
     """The settings dict as the C++ half takes it; unknown names are refused by the library,
     naming the closest valid one."""
     if given is None:
@@ -71,7 +71,7 @@ def _settings(given, shape=False):
         raise ValueError(f"settings must be a dict from setting names to values, got {type(given).__name__}")
     out = {}
     for name, v in given.items():
-        if not shape and name in _REGISTRY and _REGISTRY[name]["stage"] == "preparation":
+        if not allow_preparation and name in _REGISTRY and _REGISTRY[name]["stage"] == "preparation":
             raise ValueError(f"{name} is a setting of the shapes' preparation: give it to comap.Shape(..., settings=)")
         out[str(name)] = _setting_value(name, v)
     return out
@@ -177,7 +177,7 @@ def match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None
     F1 = _indices(F1, "F1", 2, 3)
     F2 = _indices(F2, "F2", 2, 3)
     maps, landmarks = _inputs(init, landmarks)
-    return _comap.match(V1, F1, V2, F2, maps, landmarks, _settings(settings, shape=True), _threads(threads),
+    return _comap.match(V1, F1, V2, F2, maps, landmarks, _settings(settings, allow_preparation=True), _threads(threads),
                         _progress(progress))
 
 
@@ -202,7 +202,7 @@ class Shape:
         self.V.flags.writeable = False
         self.F.flags.writeable = False
         self.name = str(name)
-        self._shape = _comap.Shape(self.V, self.F, self.name, _settings(settings, shape=True), _threads(threads))
+        self._shape = _comap.Shape(self.V, self.F, self.name, _settings(settings, allow_preparation=True), _threads(threads))
 
     @property
     def number_of_vertices(self):

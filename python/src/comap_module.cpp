@@ -363,10 +363,9 @@ struct Shape
 {
   Mesh mesh;
   std::unique_ptr<Correspondence_shape> shape;
-  std::string name;
 
   Shape(const Points_array& v, const Index_array& f, const std::string& n, const Settings_dict& settings, int threads)
-      : mesh(mesh_of_arrays(v, f, n)), name(n)
+      : mesh(mesh_of_arrays(v, f, n))
   {
     const smc::Matching_settings s = matching_settings(settings);
     Python_visitor visitor{py::none()};
