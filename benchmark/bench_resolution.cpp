@@ -70,14 +70,10 @@ std::vector<int> parse_list(const char* s)
 }
 
 /// For every vertex of `from`, the vertex nearest to it (Euclidean) in the search structure.
-smc::Vertex_index_map_vector nearest_vertices(const Mesh& from, const smc::internal::Nearest_vertex_search& to)
+smc::Vertex_index_map_vector nearest_vertices(const Mesh& from, const smc_bench::Nearest_vertex_search& to)
 {
   smc::Vertex_index_map_vector out(num_vertices(from));
-  for(Mesh::Vertex_index v : from.vertices())
-  {
-    const auto& p = from.point(v);
-    out[v.idx()] = static_cast<std::size_t>(to.nearest(p.x(), p.y(), p.z()));
-  }
+  for(Mesh::Vertex_index v : from.vertices()) out[v.idx()] = to.nearest(from.point(v));
   return out;
 }
 
@@ -116,9 +112,7 @@ int run(const std::string& a_name, const std::string& b_name, const std::vector<
   const auto vts_a = smc::read_vertex_indices(dir + "/corres/" + a_name + ".vts", 1);
   const auto vts_b = smc::read_vertex_indices(dir + "/corres/" + b_name + ".vts", 1);
   // Nearest-vertex search in the original shapes, for the transfers.
-  const smc::internal::Indexed_mesh flat_a0 = smc::internal::make_indexed_mesh(a0),
-                                    flat_b0 = smc::internal::make_indexed_mesh(b0);
-  const smc::internal::Nearest_vertex_search A0(flat_a0), B0(flat_b0);
+  const smc_bench::Nearest_vertex_search A0(a0), B0(b0);
 
   Report report({"vertices_a", "vertices_b", "preprocessing_s", "data_preparation_min", "trws_min",
                  "refinement_min", "paper_vertices", "paper_preprocessing_s", "paper_data_preparation_min",
@@ -134,27 +128,24 @@ int run(const std::string& a_name, const std::string& b_name, const std::vector<
     Timer timer;
     const smc::Correspondence_shape<Mesh, Tag> A(a), B(b);
     const double preprocessing = timer.seconds();
+    const smc_bench::Nearest_vertex_search near_a(a), near_b(b);
     // Initial maps and ground truth by nearest-vertex transfer through the original meshes.
     const auto a_to_a0 = nearest_vertices(a, A0), b_to_b0 = nearest_vertices(b, B0);
     smc::Vertex_index_map_vector m12(num_vertices(a)), m21(num_vertices(b)), gt_a(vts_a.size()), gt_b(vts_b.size());
     for(std::size_t i = 0; i < m12.size(); ++i)
     {
-      const auto& p = b0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(map_ab[a_to_a0[i]])));
-      m12[i] = static_cast<std::size_t>(B.data().nearest->nearest(p.x(), p.y(), p.z()));
+      m12[i] = near_b.nearest(b0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(map_ab[a_to_a0[i]]))));
     }
     for(std::size_t i = 0; i < m21.size(); ++i)
     {
-      const auto& p = a0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(map_ba[b_to_b0[i]])));
-      m21[i] = static_cast<std::size_t>(A.data().nearest->nearest(p.x(), p.y(), p.z()));
+      m21[i] = near_a.nearest(a0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(map_ba[b_to_b0[i]]))));
     }
     for(std::size_t k = 0; k < vts_a.size(); ++k)
     {
-      const auto& p = a0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(vts_a[k])));
-      const auto& q = b0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(vts_b[k])));
-      gt_a[k] = static_cast<std::size_t>(A.data().nearest->nearest(p.x(), p.y(), p.z()));
-      gt_b[k] = static_cast<std::size_t>(B.data().nearest->nearest(q.x(), q.y(), q.z()));
+      gt_a[k] = near_a.nearest(a0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(vts_a[k]))));
+      gt_b[k] = near_b.nearest(b0.point(Mesh::Vertex_index(static_cast<Mesh::size_type>(vts_b[k]))));
     }
-    const smc::Map_evaluator<Tag> on_b(B.data().mesh);
+    const smc::Map_evaluator<Tag> on_b(b);
     const double before = on_b.geodesic_errors(m12, gt_a, gt_b).mean;
     const smc::Coupled_refinement_result r = smc::refine_coupled_maps<Tag>(
         A, B, m12, m21, params::ring_schedule(rings, params::stop_when_consistency_worsens(false)));

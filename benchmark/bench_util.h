@@ -9,9 +9,14 @@
 #define SMC_BENCH_UTIL_H
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Kd_tree.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Search_traits_adapter.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/property_map.h>
 
 #include <chrono>
 #include <cmath>
@@ -19,8 +24,10 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace smc_bench {
@@ -126,6 +133,37 @@ inline Mesh generated_mesh(int n)
     }
   return m;
 }
+
+/// The vertex of a mesh nearest to a point (Euclidean), with CGAL's kd-tree: benchmarks use it to
+/// carry maps and ground truth from a mesh to a remeshed copy of it.
+class Nearest_vertex_search
+{
+  typedef CGAL::Search_traits_3<Kernel> Base_traits;
+  typedef CGAL::Pointer_property_map<Point>::const_type Point_map;
+  typedef CGAL::Search_traits_adapter<std::size_t, Point_map, Base_traits> Traits;
+  typedef CGAL::Orthogonal_k_neighbor_search<Traits, CGAL::Distance_adapter<std::size_t, Point_map, CGAL::Euclidean_distance<Base_traits> > >
+      Search;
+
+public:
+  explicit Nearest_vertex_search(const Mesh& m)
+  {
+    for(Mesh::Vertex_index v : m.vertices()) points_.push_back(m.point(v));
+    const Point_map ppmap = CGAL::make_property_map(std::as_const(points_));
+    tree_.reset(new Search::Tree(boost::counting_iterator<std::size_t>(0), boost::counting_iterator<std::size_t>(points_.size()),
+                                 Search::Splitter(), Traits(ppmap)));
+    tree_->build();
+  }
+  std::size_t nearest(const Point& p) const
+  {
+    const Point_map ppmap = CGAL::make_property_map(points_);
+    Search search(*tree_, p, 1, 0, true, Search::Distance(ppmap));
+    return search.begin()->first;
+  }
+
+private:
+  std::vector<Point> points_;
+  std::unique_ptr<Search::Tree> tree_;
+};
 
 /// Remeshes `m` isotropically (CGAL) to about `n` vertices.
 inline Mesh remeshed_to(const Mesh& input, int n)

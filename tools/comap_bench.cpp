@@ -9,7 +9,8 @@
 // with one row per direction, a JSON summary, the cumulative curves as CSV and SVG plots.
 
 #include "comap_commands.h"
-#include "comap_pipeline.h"
+#include "comap_report.h"
+#include "comap_settings.h"
 #include "comap_svg.h"
 
 #ifdef CGAL_LINKED_WITH_TBB

@@ -22,7 +22,14 @@
 #include <string>
 #include <vector>
 
+namespace CGAL {
+namespace Surface_mesh_correspondence {
+}
+} // namespace CGAL
+
 namespace comap {
+
+namespace smc = CGAL::Surface_mesh_correspondence;
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef Kernel::Point_3 Point;

@@ -9,7 +9,8 @@
 // Without libcgal-demo, a generated bumpy capsule and a bent copy of it are used.
 
 #include "comap_commands.h"
-#include "comap_pipeline.h"
+#include "comap_report.h"
+#include "comap_settings.h"
 #include "comap_svg.h"
 #include "comap_transfer.h"
 

@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // comap: reading meshes (every format of CGAL::IO::read_polygon_soup) with checks whose
-// messages name the file and the problem, reading and writing vertex maps, and writing
-// vertex-coloured PLY files.
+// messages name the file and the problem, reading and writing vertex maps, reading landmark
+// files, and writing vertex-coloured PLY files.
 
 #ifndef SMC_TOOLS_COMAP_MESH_IO_H
 #define SMC_TOOLS_COMAP_MESH_IO_H
@@ -40,6 +40,10 @@ Vertex_map read_vertex_map(const std::string& file, int index_base, std::size_t 
 /// Reads a ground-truth correspondence list and checks every entry is a vertex of a mesh of
 /// `mesh_vertices` vertices.
 Vertex_map read_correspondences(const std::string& file, int index_base, std::size_t mesh_vertices);
+
+/// Pairs "i j" of vertex indices, one per line ('#' starts a comment), checked against the sizes.
+std::vector<std::pair<std::size_t, std::size_t> > read_landmarks(const std::string& file, int index_base,
+                                                                 std::size_t n1, std::size_t n2);
 
 /// A file named on the command line: what named it (an option, or SOURCE / TARGET) and its path.
 struct Named_file

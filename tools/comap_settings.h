@@ -17,8 +17,6 @@
 
 namespace comap {
 
-namespace smc = CGAL::Surface_mesh_correspondence;
-
 /// Parses one JSON value (a number, true/false, a string, a list of numbers or a list of lists of
 /// numbers) into a setting value; `what` names it in errors.
 smc::Setting_value parse_setting_value(const std::string& text, const std::string& what);

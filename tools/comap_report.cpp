@@ -1,10 +1,8 @@
 // Copyright (c) 2026 The Surface_mesh_correspondence developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 
-#include "comap_pipeline.h"
+#include "comap_report.h"
 
-#include <fstream>
-#include <sstream>
 
 namespace comap {
 
@@ -148,32 +146,6 @@ void write_error_statistics(Json_writer& json, const std::string& key, const smc
       .value("fraction_within_0.1", e.fraction_below(0.1));
   if(with_curve) json.value("thresholds", e.thresholds).value("cumulative", e.cumulative);
   json.end_object();
-}
-
-std::vector<std::pair<std::size_t, std::size_t> > read_landmarks(const std::string& file, int index_base,
-                                                                 std::size_t n1, std::size_t n2)
-{
-  std::ifstream in(file);
-  if(!in) throw Input_error("cannot open the landmark file " + file);
-  std::vector<std::pair<std::size_t, std::size_t> > out;
-  std::string line;
-  for(int number = 1; std::getline(in, line); ++number)
-  {
-    const std::string content = line.substr(0, line.find('#'));
-    if(content.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::istringstream fields(content);
-    long long a = 0, b = 0;
-    std::string rest;
-    if(!(fields >> a >> b) || (fields >> rest))
-      throw Input_error(file + ":" + std::to_string(number) + ": expected two vertex indices, found '" + content + "'");
-    if(a < index_base || b < index_base || std::size_t(a - index_base) >= n1 || std::size_t(b - index_base) >= n2)
-      throw Input_error(file + ":" + std::to_string(number) + ": landmark (" + std::to_string(a) + ", " +
-                        std::to_string(b) + ") is out of range (" + std::to_string(index_base) + "-based; " +
-                        std::to_string(n1) + " and " + std::to_string(n2) + " vertices)");
-    out.emplace_back(std::size_t(a - index_base), std::size_t(b - index_base));
-  }
-  if(out.empty()) throw Input_error("the landmark file " + file + " has no landmarks");
-  return out;
 }
 
 } // namespace comap

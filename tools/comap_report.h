@@ -1,0 +1,51 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// comap: how the commands report a run: the progress lines of match_shapes() (a visitor of the
+// library's stage events) and the JSON records of its result and of error statistics.
+
+#ifndef SMC_TOOLS_COMAP_REPORT_H
+#define SMC_TOOLS_COMAP_REPORT_H
+
+#include "comap_common.h"
+#include "comap_json.h"
+
+#include <CGAL/Surface_mesh_correspondence/evaluation.h>
+#include <CGAL/Surface_mesh_correspondence/match_shapes.h>
+
+#include <string>
+
+namespace comap {
+
+/// The progress lines of a run: one per stage begun and ended, one per refinement solve, and the
+/// stages' progress at most every few seconds. Lines are prefixed by `label`.
+class Progress_visitor : public smc::Default_matching_visitor
+{
+public:
+  explicit Progress_visitor(const Progress& progress, std::string label = "", bool steps = true)
+      : progress_(&progress), label_(std::move(label)), steps_(steps)
+  {}
+  bool stage_begun(smc::Matching_stage s);
+  bool progress(smc::Matching_stage s, double fraction);
+  bool stage_ended(smc::Matching_stage s, double seconds);
+  bool refinement_step(const smc::Refinement_step& s);
+
+private:
+  const Progress* progress_;
+  std::string label_;
+  bool steps_;
+  double last_line_ = -1e9;
+};
+
+/// Writes the result of match_shapes() (decisions, stage times, consistency and distortion,
+/// refinement solves) as a JSON object named `key`.
+void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r);
+
+/// Mean, median, maximum, fractions within 0.025 / 0.05 / 0.1 and, with `with_curve`, the
+/// cumulative curve.
+void write_error_statistics(Json_writer& json, const std::string& key, const smc::Error_statistics& e,
+                            bool with_curve);
+
+} // namespace comap
+
+#endif // SMC_TOOLS_COMAP_REPORT_H
