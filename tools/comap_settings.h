@@ -12,19 +12,11 @@
 #include "comap_options.h"
 
 #include <CGAL/Surface_mesh_correspondence/matching_settings.h>
+#include <CGAL/Surface_mesh_correspondence/settings_io.h>
 
 #include <string>
 
 namespace comap {
-
-/// Parses one JSON value (a number, true/false, a string, a list of numbers or a list of lists of
-/// numbers) into a setting value; `what` names it in errors.
-smc::Setting_value parse_setting_value(const std::string& text, const std::string& what);
-
-/// Reads a settings file: one JSON object whose keys are settings of the registry. An unknown
-/// key names the closest valid one; a value of the wrong type or out of range names the setting
-/// and its range. Errors are Input_error naming the file.
-void read_settings_file(const std::string& file, smc::Matching_settings& settings);
 
 /// --set NAME=VALUE: VALUE as in a settings file; a bare word is a string, "4,3,2,1" a list.
 void set_setting(const std::string& assignment, smc::Matching_settings& settings);
@@ -34,12 +26,7 @@ void set_setting(const std::string& assignment, smc::Matching_settings& settings
 void add_settings_options(Option_parser& parser, smc::Matching_settings& settings,
                           std::vector<std::string>* settings_files = nullptr);
 
-/// The registry as a settings file to edit: every setting with its default and, in comments,
-/// its documentation, type and range; settings whose default depends on the maps' origin are
-/// null (the default). read_settings_file() reads it back.
-std::string settings_file_template();
-
-/// `comap settings`: prints settings_file_template().
+/// `comap settings`: prints smc::settings_file_template().
 int run_settings(int argc, char** argv);
 
 /// The expert help: the registry as text, one entry per setting.

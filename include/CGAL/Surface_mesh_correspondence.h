@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/matching_settings.h>
+#include <CGAL/Surface_mesh_correspondence/settings_io.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/trws.h>
 #include <CGAL/Surface_mesh_correspondence/laplacian.h>

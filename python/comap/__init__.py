@@ -18,7 +18,7 @@ import numpy as _np
 
 from . import _comap
 
-__all__ = ["match", "Shape", "match_shapes", "Stopped", "settings", "check_settings", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
+__all__ = ["match", "Shape", "match_shapes", "Stopped", "settings", "check_settings", "read_settings", "read_mesh", "read_map", "write_map", "geodesic_errors", "cycle_errors", "coverage",
            "inconsistent_vertices"]
 
 #: Whether the library runs its parallel code paths (Intel TBB), on every core by default.
@@ -44,6 +44,16 @@ def check_settings(settings):
     an unknown name (naming the closest valid one), a value of the wrong type or out of its
     range."""
     _comap.check_settings(_settings(settings, allow_preparation=True))
+
+
+def read_settings(file):
+    """Reads a settings file, as ``comap match --settings`` does: one JSON object from registry
+    names to values, with ``//`` comments; ``null`` keeps a setting's default (such entries are
+    left out). ``comap settings`` prints every setting in this form. Returns a dict for the
+    ``settings=`` of ``match``, ``Shape`` and ``match_shapes``. Raises ``OSError`` for a file that
+    cannot be read or is malformed and ``ValueError`` for an unknown name (naming the closest
+    valid one) or a bad value, both naming the file and the line."""
+    return _comap.read_settings(_path(file))
 
 
 def _setting_value(name, v):

@@ -116,22 +116,6 @@ def read_pairs(pairs_file):
     return pairs
 
 
-def read_settings(file):
-    """A settings file as comap reads it: a JSON object, with // comments; null keeps a
-    setting's default."""
-    with open(file) as f:
-        text = f.read()
-    # Remove // comments outside strings.
-    text = re.sub(r'("(?:\\.|[^"\\])*")|//[^\n]*', lambda m: m.group(1) or "", text)
-    try:
-        given = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise ValueError(f"{file}:{e.lineno}: {e.msg}") from None
-    if not isinstance(given, dict):
-        raise ValueError(f"{file}: a settings file holds one JSON object")
-    return {k: v for k, v in given.items() if v is not None}
-
-
 def _write_atomically(path, write):
     folder = os.path.dirname(os.path.abspath(path))
     fd, temporary = tempfile.mkstemp(dir=folder, prefix="." + os.path.basename(path) + ".tmp-")
@@ -448,7 +432,7 @@ def main(argv=None):
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     try:
-        settings = read_settings(args.settings) if args.settings else None
+        settings = comap.read_settings(args.settings) if args.settings else None
         rows = run_batch(args.pairs, args.out, settings=settings, threads=args.threads,
                          index_base=args.index_base, progress=not args.quiet, workers=args.workers,
                          scheduler=args.scheduler, redo=args.redo)

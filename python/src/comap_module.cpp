@@ -12,6 +12,7 @@
 #include <CGAL/Surface_mesh_correspondence/match_shapes.h>
 #include <CGAL/Surface_mesh_correspondence/mesh_io.h>
 #include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
+#include <CGAL/Surface_mesh_correspondence/settings_io.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -186,6 +187,15 @@ smc::Matching_settings matching_settings(const Settings_dict& given)
   smc::Matching_settings settings;
   for(const auto& [name, value] : given) settings.set(name, value);
   return settings;
+}
+
+/// The settings a settings file sets (its null entries left out: they keep the defaults).
+Settings_dict read_settings(const std::string& file)
+{
+  Settings_dict out;
+  for(const smc::Settings_file_entry& e : smc::read_settings_file(file))
+    if(e.value) out[e.name] = *e.value;
+  return out;
 }
 
 /// The visitor of a run from Python: forwards the stages' progress to the callback (with the
@@ -564,6 +574,7 @@ PYBIND11_MODULE(_comap, m)
         "match(V1, F1, V2, F2, init, landmarks, settings, threads, progress) -> (map_12, map_21, info): see "
         "comap.match.");
   m.def("settings_registry", &settings_registry);
+  m.def("read_settings", &read_settings, py::arg("file"));
   m.def("check_settings", [](const Settings_dict& settings) { matching_settings(settings); }, py::arg("settings"));
   py::class_<Shape>(m, "Shape")
       .def(py::init<const Points_array&, const Index_array&, const std::string&, const Settings_dict&, int>(),

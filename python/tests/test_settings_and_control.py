@@ -133,3 +133,29 @@ def test_ctrl_c_stops_the_run(pair):
     # The module still works afterwards.
     m12, _, _ = comap.match(*pair, settings={"use_refinement": False})
     assert len(m12) == len(pair[0])
+
+
+def test_settings_files_are_read_by_the_library(tmp_path):
+    (tmp_path / "expert.json").write_text(
+        '// expert run\n{\n  "number_of_candidates": 60, // more\n  "ring_schedule": [3, 2, 1],\n'
+        '  "use_coupling": false,\n  "unary_weight": null,\n  "initialization_fits": [[20, 0.03, 0.3]]\n}\n')
+    assert comap.read_settings(tmp_path / "expert.json") == {
+        "number_of_candidates": 60.0, "ring_schedule": [3.0, 2.0, 1.0], "use_coupling": False,
+        "initialization_fits": [[20.0, 0.03, 0.3]]}
+    # What `comap settings` prints reads back: every setting whose default does not depend on the
+    # maps' origin, at its default.
+    template = subprocess.run([os.environ.get("COMAP", "comap"), "settings"], check=True, capture_output=True,
+                              text=True, timeout=60).stdout
+    (tmp_path / "all.json").write_text(template)
+    read = comap.read_settings(tmp_path / "all.json")
+    registry = comap.settings()
+    assert set(read) == {n for n, s in registry.items() if s["default"] == s["default_for_given_maps"]}
+    assert read["number_of_eigenpairs"] == float(registry["number_of_eigenpairs"]["default"])
+    (tmp_path / "typo.json").write_text('{\n  "number_of_candidate": 5\n}\n')
+    with pytest.raises(ValueError, match=r'typo.json:2: .*did you mean "number_of_candidates"'):
+        comap.read_settings(tmp_path / "typo.json")
+    (tmp_path / "broken.json").write_text('{\n  "ring_schedule": [3,, 1]\n}\n')
+    with pytest.raises(OSError, match=r"broken.json:2:\d+: expected a number"):
+        comap.read_settings(tmp_path / "broken.json")
+    with pytest.raises(OSError, match="missing.json"):
+        comap.read_settings(tmp_path / "missing.json")
