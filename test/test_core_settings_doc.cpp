@@ -238,6 +238,32 @@ BOOST_AUTO_TEST_CASE(named_parameters_in_the_manual_exist)
   BOOST_TEST_MESSAGE(calls << " named parameter calls in the manual");
 }
 
+BOOST_AUTO_TEST_CASE(settings_set_by_name_in_the_manual_exist)
+{
+  // Settings the pages set by name: `--set name=`, `set("name"` and `"name": value` in settings
+  // files (JSON objects in code blocks); each must be a registry setting.
+  std::set<std::string> registry;
+  for(const smc::Setting_info& s : smc::matching_settings_registry()) registry.insert(s.name);
+  const std::regex by_name("--set ([a-z_0-9]+)=|\\.set\\(\"([a-z_0-9]+)\"|[{,]\\s*\"([a-z_0-9]+)\":");
+  std::vector<std::string> pages = {std::string(SMC_SOURCE_DIR) + "/README.md",
+                                    std::string(SMC_SOURCE_DIR) + "/benchmark/README.md"};
+  for(const auto& entry : std::filesystem::directory_iterator(std::string(SMC_SOURCE_DIR) + "/doc"))
+    if(entry.path().extension() == ".md") pages.push_back(entry.path().string());
+  std::size_t names = 0;
+  for(const std::string& page : pages)
+  {
+    const std::string text = read_file(page);
+    for(std::sregex_iterator it(text.begin(), text.end(), by_name), end; it != end; ++it)
+    {
+      const std::string name = (*it)[1].matched ? (*it)[1] : (*it)[2].matched ? (*it)[2] : (*it)[3];
+      if(name == "name") continue;  // the placeholder of `--set name=value`
+      ++names;
+      if(!registry.count(name)) BOOST_ERROR(page + ": \"" + name + "\" is set by name but is not a setting of the registry");
+    }
+  }
+  BOOST_TEST(names >= 10u, names << " settings set by name in the manual");
+}
+
 BOOST_AUTO_TEST_CASE(the_readme_example_is_the_example_program)
 {
   // The README's first C++ block is the text between the snippet markers of

@@ -260,6 +260,7 @@ public:
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
 
   /// Prepares `tm`. The mesh must be a connected, manifold triangle mesh (boundaries are fine).
+  /// \param tm the mesh (its geometry is copied into the shape)
   /// \param np optional named parameters:
   ///   - the settings of stage `preparation` (number_of_eigenpairs, use_intrinsic_delaunay, the
   ///     descriptor weights and parameters, distance_oracle, oracle_radius, oracle_landmarks) and

@@ -306,6 +306,7 @@ Automatic_initialization_result repair_given_maps_of_meshes(const TriangleMesh1&
 /// 0.035), in which case they are kept without computing the automatic maps. This catches given
 /// maps that are wrong as a whole, which their own cores cannot repair.
 ///
+/// \param tm1, tm2 the two meshes
 /// \param map_12, map_21 input and output: `map_12[i]` is the vertex of `tm2` matched to vertex i of
 ///   `tm1` (indices of the vertex index maps), `map_21` the other way round
 /// \param np the named parameters of automatic_initial_maps(); `landmarks` are kept in every pass
@@ -355,6 +356,7 @@ Automatic_initialization_result repair_torn_maps(const Correspondence_shape<Tria
 /// whose deformation stretches the surface, exact maps can distort more than slightly less
 /// accurate automatic maps, which then replace them.
 ///
+/// \param tm1, tm2 the two meshes
 /// \param map_12, map_21 input and output, as for repair_torn_maps()
 /// \param np the named parameters of automatic_initial_maps()
 /// \returns the result of the automatic maps when they replaced the given ones, else a result

@@ -199,6 +199,7 @@ Eigen::MatrixXd read_user_descriptors(const std::vector<VertexDescriptor>& verti
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag`
 /// \tparam TriangleMesh a model of `FaceListGraph` (triangles)
+/// \param tm the mesh
 /// \param np optional named parameters: `hks_weight` (double, 0.5), `wks_weight` (double, 1),
 ///   `shot_weight` (double, 1), `user_descriptor_map` (vertex -> range of numbers, none),
 ///   `user_descriptor_weight` (double, 1), `number_of_hks_scales` (16),

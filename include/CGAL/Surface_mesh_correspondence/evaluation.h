@@ -164,6 +164,7 @@ public:
   {}
 
   /// Builds the evaluator for `tm`.
+  /// \param tm the mesh the maps go to (or come from)
   /// \param np optional `vertex_point_map`, `vertex_index_map` (vertex numbering of the maps)
   template <typename TriangleMesh, typename NamedParameters = parameters::Default_named_parameters>
   explicit Map_evaluator(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
@@ -271,6 +272,10 @@ private:
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Geodesic error of a map from a source mesh to `target` against ground truth (see
 /// `Map_evaluator::geodesic_errors()`). Vertex indices are those of the target's vertex index map.
+/// \param target the target mesh
+/// \param map the vertex of `target` matched to each source vertex
+/// \param gt_source, gt_target the ground truth: source vertex `gt_source[k]` corresponds to
+///   target vertex `gt_target[k]`
 /// \param np optional `vertex_point_map`, `vertex_index_map` of `target`
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh,
           typename NamedParameters = parameters::Default_named_parameters>

@@ -224,6 +224,7 @@ public:
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
 
   /// Precomputes the intrinsic Delaunay triangulation and the two factorisations.
+  /// \param tm the mesh
   /// \param np optional named parameters `vertex_point_map`, `vertex_index_map` (as for
   ///        Fast_marching_geodesic_distances).
   /// \throws Invalid_mesh_error for a bad mesh (see make_indexed_mesh()).

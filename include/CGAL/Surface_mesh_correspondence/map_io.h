@@ -171,6 +171,8 @@ inline void write_vertex_indices(const std::string& filename, const Vertex_index
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Checks that `map` is a map from a mesh with `source_size` vertices to one with `target_size`
 /// vertices: one entry per source vertex, every entry below `target_size`.
+/// \param map the vertex indices of the target, one per source vertex
+/// \param source_size, target_size the numbers of vertices of the source and the target
 /// \param what names the map in the message (for example "map 1->2" or a file name)
 /// \throws Invalid_map_error naming the problem
 inline void check_vertex_map(const Vertex_index_map_vector& map, std::size_t source_size,

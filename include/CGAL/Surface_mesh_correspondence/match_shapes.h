@@ -513,6 +513,9 @@ Matching_result match_shapes(const Correspondence_shape<TriangleMesh1, Tag1>& sh
 /// \tparam TriangleMesh1, TriangleMesh2 models of `FaceListGraph` whose faces are triangles
 /// \tparam VertexVertexMap12 a model of `WritablePropertyMap` from the vertices of `tm1` to those
 ///   of `tm2`; the same for VertexVertexMap21. They are written only when the run succeeds.
+/// \param tm1, tm2 the two meshes
+/// \param map_12, map_21 output: the vertex of `tm2` matched to each vertex of `tm1`, and the other
+///   way round
 /// \param np optional named parameters:
 ///   - every setting of the registry by its name (Matching_settings; the settings table of the
 ///     manual), or all of them at once with `matching_settings(s)` (individual named parameters

@@ -649,6 +649,8 @@ Coupled_refinement_result refine_coupled_maps(const Correspondence_shape<Triangl
 /// \tparam TriangleMesh1, TriangleMesh2 models of `FaceListGraph` whose faces are triangles
 /// \tparam VertexVertexMap12 a model of `ReadWritePropertyMap` from the vertices of `tm1` to those
 ///   of `tm2` (read: initial map; written: refined map); same for VertexVertexMap21
+/// \param tm1, tm2 the two meshes
+/// \param map_12, map_21 input and output: the maps to refine, refined in place
 /// \param np optional named parameters: the settings of stages `preparation`, `refinement` and
 ///   `selection` of the registry (see Matching_settings and the settings table of the manual),
 ///   with the registry's defaults for given maps: `number_of_candidates` (m, 20), `ring_schedule`

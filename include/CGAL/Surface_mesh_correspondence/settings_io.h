@@ -190,6 +190,7 @@ inline Setting_value parse_setting_value(const std::string& text, const std::str
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// The entries of a settings file's text, in their order, each checked against the registry.
+/// \param text the contents of the settings file
 /// \param what names the text in messages (the file name).
 /// \throws IO_error (malformed JSON: `what:line:column: ...`) or Invalid_parameter_error (`what:line:
 ///   ...`: an unknown name, with the closest valid one, or a value of the wrong type or out of the

@@ -1,0 +1,12 @@
+# Runs Doxygen on DOXYFILE and fails when it fails or writes any warning to WARNINGS.
+file(REMOVE ${WARNINGS})
+execute_process(COMMAND ${DOXYGEN} ${DOXYFILE} RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "doxygen failed (${status})")
+endif()
+file(READ ${WARNINGS} warnings)
+string(STRIP "${warnings}" warnings)
+if(NOT warnings STREQUAL "")
+  message(FATAL_ERROR "doxygen warnings:\n${warnings}")
+endif()
+message(STATUS "doxygen: no warnings")
