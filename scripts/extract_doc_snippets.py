@@ -2,7 +2,7 @@
 # Copyright (c) 2026 The Surface_mesh_correspondence developers.
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Extracts the C++ programs of the manual (every ```cpp block of the given Markdown pages) into
-one source file each, so that the build compiles them (target doc_snippets, doc/CMakeLists.txt).
+one source file each, so that the build compiles them (doc/CMakeLists.txt).
 
 Each block must be a whole program (blocks marked `<!-- example: examples/NAME.cpp -->` are
 copies of the example programs and are left to them): its #include lines, then code with a main(). The includes
