@@ -284,6 +284,31 @@ BOOST_AUTO_TEST_CASE(the_readme_example_is_the_example_program)
   }
 }
 
+BOOST_AUTO_TEST_CASE(examples_shown_in_the_manual_are_the_example_programs)
+{
+  // A ```cpp block after "<!-- example: examples/NAME.cpp -->" is that file, exactly (the build
+  // compiles the examples; scripts/extract_doc_snippets.py leaves these blocks to them).
+  const std::regex marked("<!-- example: (examples/[a-z_]+\\.cpp) -->\n```cpp\n");
+  std::size_t shown = 0;
+  for(const auto& entry : std::filesystem::directory_iterator(std::string(SMC_SOURCE_DIR) + "/doc"))
+  {
+    if(entry.path().extension() != ".md") continue;
+    const std::string text = read_file(entry.path().string());
+    for(std::sregex_iterator it(text.begin(), text.end(), marked), end; it != end; ++it)
+    {
+      ++shown;
+      const std::size_t begin = std::size_t(it->position() + it->length());
+      const std::size_t close = text.find("\n```", begin - 1);
+      BOOST_TEST_REQUIRE(close != std::string::npos);
+      const std::string block = text.substr(begin, close + 1 - begin);
+      const std::string file = (*it)[1];
+      BOOST_TEST((block == read_file(std::string(SMC_SOURCE_DIR) + "/" + file)),
+                 entry.path().filename().string() << " shows " << file << " but differs from the file");
+    }
+  }
+  BOOST_TEST(shown >= 3u, shown << " example programs shown in the manual");
+}
+
 BOOST_AUTO_TEST_CASE(defaults_in_the_manual_tables_are_the_registry_s)
 {
   // The tables of the other pages that list registry settings with a "default" column show the
