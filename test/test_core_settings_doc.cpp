@@ -184,6 +184,16 @@ std::string first_cpp_block(const std::string& page)
   return page.substr(b + fence.size(), e + 1 - b - fence.size());
 }
 
+/// The Markdown pages of the manual: README.md, benchmark/README.md and doc/*.md.
+std::vector<std::string> manual_pages()
+{
+  std::vector<std::string> pages = {std::string(SMC_SOURCE_DIR) + "/README.md",
+                                    std::string(SMC_SOURCE_DIR) + "/benchmark/README.md"};
+  for(const auto& entry : std::filesystem::directory_iterator(std::string(SMC_SOURCE_DIR) + "/doc"))
+    if(entry.path().extension() == ".md") pages.push_back(entry.path().string());
+  return pages;
+}
+
 } // namespace
 
 BOOST_AUTO_TEST_SUITE(settings_documentation)
@@ -220,11 +230,8 @@ BOOST_AUTO_TEST_CASE(named_parameters_in_the_manual_exist)
                           "number_of_iterations", "default_values"})
     known.insert(cgal);
   const std::regex call("(?:params|parameters)::([a-z_]+)\\(");
-  std::vector<std::string> pages = {std::string(SMC_SOURCE_DIR) + "/README.md"};
-  for(const auto& entry : std::filesystem::directory_iterator(std::string(SMC_SOURCE_DIR) + "/doc"))
-    if(entry.path().extension() == ".md") pages.push_back(entry.path().string());
   std::size_t calls = 0;
-  for(const std::string& page : pages)
+  for(const std::string& page : manual_pages())
   {
     const std::string text = read_file(page);
     for(std::sregex_iterator it(text.begin(), text.end(), call), end; it != end; ++it)
@@ -245,12 +252,8 @@ BOOST_AUTO_TEST_CASE(settings_set_by_name_in_the_manual_exist)
   std::set<std::string> registry;
   for(const smc::Setting_info& s : smc::matching_settings_registry()) registry.insert(s.name);
   const std::regex by_name("--set ([a-z_0-9]+)=|\\.set\\(\"([a-z_0-9]+)\"|[{,]\\s*\"([a-z_0-9]+)\":");
-  std::vector<std::string> pages = {std::string(SMC_SOURCE_DIR) + "/README.md",
-                                    std::string(SMC_SOURCE_DIR) + "/benchmark/README.md"};
-  for(const auto& entry : std::filesystem::directory_iterator(std::string(SMC_SOURCE_DIR) + "/doc"))
-    if(entry.path().extension() == ".md") pages.push_back(entry.path().string());
   std::size_t names = 0;
-  for(const std::string& page : pages)
+  for(const std::string& page : manual_pages())
   {
     const std::string text = read_file(page);
     for(std::sregex_iterator it(text.begin(), text.end(), by_name), end; it != end; ++it)
@@ -290,10 +293,9 @@ BOOST_AUTO_TEST_CASE(examples_shown_in_the_manual_are_the_example_programs)
   // compiles the examples; scripts/extract_doc_snippets.py leaves these blocks to them).
   const std::regex marked("<!-- example: (examples/[a-z_]+\\.cpp) -->\n```cpp\n");
   std::size_t shown = 0;
-  for(const auto& entry : std::filesystem::directory_iterator(std::string(SMC_SOURCE_DIR) + "/doc"))
+  for(const std::string& page : manual_pages())
   {
-    if(entry.path().extension() != ".md") continue;
-    const std::string text = read_file(entry.path().string());
+    const std::string text = read_file(page);
     for(std::sregex_iterator it(text.begin(), text.end(), marked), end; it != end; ++it)
     {
       ++shown;
@@ -303,7 +305,7 @@ BOOST_AUTO_TEST_CASE(examples_shown_in_the_manual_are_the_example_programs)
       const std::string block = text.substr(begin, close + 1 - begin);
       const std::string file = (*it)[1];
       BOOST_TEST((block == read_file(std::string(SMC_SOURCE_DIR) + "/" + file)),
-                 entry.path().filename().string() << " shows " << file << " but differs from the file");
+                 page << " shows " << file << " but differs from the file");
     }
   }
   BOOST_TEST(shown >= 3u, shown << " example programs shown in the manual");

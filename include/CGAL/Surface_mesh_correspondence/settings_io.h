@@ -91,18 +91,24 @@ public:
     pos_ += std::size_t(end - begin);
     return x;
   }
-  std::vector<double> number_list()
+  /// Reads `[item, item, ...]`, possibly empty, calling `item()` for each element.
+  template <typename Item>
+  void list_of(Item item)
   {
     expect('[');
-    std::vector<double> list;
     if(peek() != ']')
       while(true)
       {
-        list.push_back(number());
+        item();
         if(peek() != ',') break;
         ++pos_;
       }
     expect(']');
+  }
+  std::vector<double> number_list()
+  {
+    std::vector<double> list;
+    list_of([&] { list.push_back(number()); });
     return list;
   }
   Setting_value value()
@@ -123,14 +129,7 @@ public:
     pos_ = open;
     if(!nested) return number_list();
     std::vector<std::vector<double> > lists;
-    expect('[');
-    while(true)
-    {
-      lists.push_back(number_list());
-      if(peek() != ',') break;
-      ++pos_;
-    }
-    expect(']');
+    list_of([&] { lists.push_back(number_list()); });
     return lists;
   }
   /// The line of the current position (1-based).
