@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -39,6 +40,7 @@
 
 namespace smc = CGAL::Surface_mesh_correspondence;
 namespace params = smc::parameters;
+namespace tt = boost::test_tools;
 
 // Everything of this file lives in its own namespace: the suite is compiled as one unit with the
 // other test_matching_*.cpp files, whose anonymous namespaces would otherwise clash.
@@ -573,7 +575,7 @@ std::string selection_fingerprint(const smc::Matching_settings& m)
   const smc::internal::Selection_settings s = smc::internal::Selection_settings::from(m);
   std::ostringstream o;
   o.precision(17);
-  o << int(s.mode) << ' ' << s.radius << ' ' << s.samples << ' ' << s.smoothing;
+  o << int(s.mode) << ' ' << s.radius << ' ' << s.samples << ' ' << s.smoothing << ' ' << s.diagnostic_regions;
   return o.str();
 }
 /// The settings that match_shapes() itself reads (match_shapes.h, match_prepared_shapes() and
@@ -1500,6 +1502,139 @@ BOOST_AUTO_TEST_CASE(selection_stage_takes_each_region_from_the_map_that_is_righ
     BOOST_TEST(w.refined_more_consistent);
     BOOST_TEST(w.refined_fraction_12 == 1.0);
     BOOST_TEST((Index_map(y12.begin(), y12.end()) == input12));
+  }
+}
+
+// ------------------------------------------------------------------------------------ 6b. diagnostics
+
+BOOST_AUTO_TEST_CASE(diagnostic_regions_are_the_cells_of_their_centres)
+{
+  // Every vertex lies in the cell of the centre nearest to it along the edges (Dijkstra from each
+  // centre, an independent recount); the centres are distinct and each is in its own cell.
+  const Sequential_shape& shape = data().bent1;
+  const smc::internal::Indexed_mesh& m = shape.data().mesh;
+  std::vector<int> centers;
+  const std::vector<int> regions = smc::internal::farthest_point_regions(m, 12, centers);
+  BOOST_TEST_REQUIRE(centers.size() == 12u);
+  BOOST_TEST(std::set<int>(centers.begin(), centers.end()).size() == 12u);
+  const smc::internal::Edge_length_graph g(m);
+  std::vector<std::vector<double> > distance(centers.size());
+  for(std::size_t c = 0; c < centers.size(); ++c)
+  {
+    smc::internal::dijkstra_distances(g, {centers[c]}, distance[c]);
+    BOOST_TEST(regions[std::size_t(centers[c])] == int(c));
+  }
+  std::size_t wrong = 0;
+  for(std::size_t v = 0; v < regions.size(); ++v)
+  {
+    BOOST_TEST_REQUIRE((regions[v] >= 0 && regions[v] < 12));
+    double nearest = std::numeric_limits<double>::infinity();
+    for(const std::vector<double>& dc : distance) nearest = std::min(nearest, dc[v]);
+    wrong += distance[std::size_t(regions[v])][v] > nearest + 1e-12;
+  }
+  BOOST_TEST(wrong == 0u);
+  // No regions asked: every vertex in region 0, no centre.
+  BOOST_TEST(smc::internal::farthest_point_regions(m, 0, centers) == std::vector<int>(regions.size(), 0));
+  BOOST_TEST(centers.empty());
+}
+
+BOOST_AUTO_TEST_CASE(diagnostics_match_independent_recounts_and_the_refinements_energy)
+{
+  const Pipeline_data& d = data();
+  const Shape_pair& p = d.bent;
+  const smc::Matching_settings settings = fast_settings();
+  const Run r = run_shapes(d.bent1, d.bent2, params::matching_settings(settings));
+  const smc::Matching_diagnostics& g = r.result.diagnostics;
+  BOOST_TEST_REQUIRE(g.computed);
+  const Index_map& b12 = r.result.unrefined_map_12;
+  const Index_map& b21 = r.result.unrefined_map_21;
+  const double n1 = double(r.m12.size()), n2 = double(r.m21.size());
+  BOOST_TEST_REQUIRE(g.regions_1.size() == r.m12.size());
+  BOOST_TEST_REQUIRE(g.regions_2.size() == r.m21.size());
+
+  // Consistency: the inconsistent vertices and cycle errors of both directions, recounted.
+  auto inconsistent = [&](const std::array<smc::Direction_diagnostics, 2>& x) {
+    return std::size_t(std::lround(x[0].whole.inconsistent_fraction * n1 + x[1].whole.inconsistent_fraction * n2));
+  };
+  BOOST_TEST(inconsistent(g.before) == brute_force_inconsistent(b12, b21));
+  BOOST_TEST(inconsistent(g.after) == brute_force_inconsistent(r.m12, r.m21));
+  auto cycle = [&](const std::array<smc::Direction_diagnostics, 2>& x) {
+    return (x[0].whole.cycle_error * n1 + x[1].whole.cycle_error * n2) / (n1 + n2);
+  };
+  BOOST_TEST(cycle(g.before) == independent_cycle_error(p, b12, b21), tt::tolerance(1e-9));
+  BOOST_TEST(cycle(g.after) == independent_cycle_error(p, r.m12, r.m21), tt::tolerance(1e-9));
+
+  // Regions: 16 per mesh, their vertex counts are the label counts, and the whole-mesh figures
+  // are the vertex-weighted (distortion: sample-weighted) means of the regions'.
+  for(int direction = 0; direction < 2; ++direction)
+    for(const smc::Direction_diagnostics* x : {&g.before[direction], &g.after[direction]})
+    {
+      const std::vector<int>& labels = direction == 0 ? g.regions_1 : g.regions_2;
+      BOOST_TEST_REQUIRE(x->regions.size() == 16u);
+      BOOST_TEST(x->whole.vertices == labels.size());
+      double energy = 0, distortion = 0;
+      std::size_t samples = 0;
+      for(std::size_t k = 0; k < x->regions.size(); ++k)
+      {
+        const smc::Map_diagnostics& region = x->regions[k];
+        BOOST_TEST(region.vertices == std::size_t(std::count(labels.begin(), labels.end(), int(k))));
+        BOOST_TEST(region.distortion_samples >= 1u);  // at least its centre
+        energy += region.energy * double(region.vertices);
+        distortion += region.distortion * double(region.distortion_samples);
+        samples += region.distortion_samples;
+      }
+      BOOST_TEST(samples == x->whole.distortion_samples);
+      BOOST_TEST(energy / double(labels.size()) == x->whole.energy, tt::tolerance(1e-9));
+      BOOST_TEST(distortion / double(samples) == x->whole.distortion, tt::tolerance(1e-9));
+      BOOST_TEST(x->whole.descriptor_distance > 0.0);
+      BOOST_TEST(x->whole.distortion > 0.0);
+    }
+
+  // Energy: the refinement's own MRF (built by build_energy on candidates whose label 0 is the
+  // current match) evaluated at label 0 everywhere, with the weights of the run.
+  const smc::Refinement_settings rs = smc::Refinement_settings::from(settings.resolved(smc::Map_origin::automatic));
+  auto mrf_energy = [&](const Sequential_shape& S, const Sequential_shape& T, const Index_map& x, const Index_map& y) {
+    const std::vector<int> xs(x.begin(), x.end()), ys(y.begin(), y.end());
+    std::vector<int> x_inverse = xs;  // any map: only the candidates' extra seeds depend on it
+    smc::internal::Refinement_workspace<CGAL::Sequential_tag> w;
+    smc::internal::select_candidates<CGAL::Sequential_tag>(S.data(), T.data(), xs, x_inverse, 1, rs, w.candidates);
+    smc::internal::build_energy<CGAL::Sequential_tag>(S.data(), T.data(), ys, rs, w);
+    return w.energy.energy(std::vector<int>(xs.size(), 0));
+  };
+  BOOST_TEST(g.after[0].whole.energy * n1 == mrf_energy(d.bent1, d.bent2, r.m12, r.m21), tt::tolerance(1e-4));
+  BOOST_TEST(g.after[1].whole.energy * n2 == mrf_energy(d.bent2, d.bent1, r.m21, r.m12), tt::tolerance(1e-4));
+  BOOST_TEST(g.before[0].whole.energy * n1 == mrf_energy(d.bent1, d.bent2, b12, b21), tt::tolerance(1e-4));
+  BOOST_TEST_MESSAGE("diagnostics 1->2 before / after: inconsistent " << g.before[0].whole.inconsistent_fraction
+                     << " / " << g.after[0].whole.inconsistent_fraction << ", distortion "
+                     << g.before[0].whole.distortion << " / " << g.after[0].whole.distortion << ", energy "
+                     << g.before[0].whole.energy << " / " << g.after[0].whole.energy);
+
+  // diagnostic_regions = 0: the whole meshes only; without the refinement: none.
+  smc::Matching_settings no_regions = settings;
+  no_regions.set("diagnostic_regions", 0.0);
+  const Run z = run_shapes(d.bent1, d.bent2, params::matching_settings(no_regions));
+  BOOST_TEST(z.result.diagnostics.computed);
+  BOOST_TEST(z.result.diagnostics.after[0].regions.empty());
+  BOOST_TEST(z.result.diagnostics.after[0].whole.energy == g.after[0].whole.energy);
+  smc::Matching_settings unrefined = settings;
+  unrefined.set("use_refinement", false);
+  BOOST_TEST(!run_shapes(d.bent1, d.bent2, params::matching_settings(unrefined)).result.diagnostics.computed);
+}
+
+BOOST_AUTO_TEST_CASE(diagnostics_of_exact_maps_are_zero_but_for_the_descriptors)
+{
+  // The permuted rigid copy from its ground truth: consistent, undistorted maps.
+  const Pipeline_data& d = data();
+  const Run r = run_shapes(d.copy1, d.copy2, params::initial_maps(d.copy.gt_12, d.copy.gt_21,
+                                                                  params::matching_settings(fast_given_settings())));
+  BOOST_TEST_REQUIRE(r.result.diagnostics.computed);
+  for(int direction = 0; direction < 2; ++direction)
+  {
+    const smc::Map_diagnostics& x = r.result.diagnostics.before[direction].whole;
+    BOOST_TEST(x.inconsistent_fraction == 0.0);
+    BOOST_TEST(x.cycle_error == 0.0);
+    BOOST_TEST(x.distortion < 1e-6);
+    BOOST_TEST(x.descriptor_distance < 1e-3);
   }
 }
 

@@ -18,12 +18,15 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <future>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <list>
 #include <map>
 #include <mutex>
@@ -117,6 +120,74 @@ struct Direction_result
   /// The initial maps (given, or automatic), the maps that entered the refinement (the automatic
   /// maps, or the given maps after the repair and the comparison) and the final maps.
   Map_quality initial, unrefined, refined;
+  /// The library's ground-truth-free diagnostics of the unrefined and the final maps, and the
+  /// mean ground-truth error of each of their regions (NaN: no ground-truth sample in the region).
+  bool has_diagnostics = false;
+  smc::Direction_diagnostics diagnostics_before, diagnostics_after;
+  std::vector<double> region_error_before, region_error_after;
+};
+
+/// The mean error of the ground-truth samples of each region of the source (`gt_source[k]` is the
+/// source vertex of sample k).
+std::vector<double> region_errors(const smc::Error_statistics& e, const Vertex_map& gt_source,
+                                  const std::vector<int>& regions, std::size_t count)
+{
+  std::vector<double> sum(count, 0.0), n(count, 0.0);
+  for(std::size_t k = 0; k < e.errors.size() && k < gt_source.size(); ++k)
+  {
+    const std::size_t r = std::size_t(regions[gt_source[k]]);
+    sum[r] += e.errors[k];
+    n[r] += 1;
+  }
+  for(std::size_t r = 0; r < count; ++r) sum[r] = n[r] > 0 ? sum[r] / n[r] : std::numeric_limits<double>::quiet_NaN();
+  return sum;
+}
+
+/// How well each ground-truth-free diagnostic tells the maps (or regions) that the refinement made
+/// worse from those it made better: "worse" and "better" by the ground-truth error, changed by
+/// more than 0.002; a diagnostic says "worse" when its value rose.
+struct Diagnostic_separation
+{
+  static constexpr std::size_t measures = 5;
+  static const char* name(std::size_t k)
+  {
+    static const char* names[measures] = {"inconsistent_fraction", "cycle_error", "distortion", "descriptor_distance",
+                                          "energy"};
+    return names[k];
+  }
+  static double value(const smc::Map_diagnostics& d, std::size_t k)
+  {
+    const double v[measures] = {d.inconsistent_fraction, d.cycle_error, d.distortion, d.descriptor_distance, d.energy};
+    return v[k];
+  }
+  std::size_t worse = 0, better = 0;
+  std::array<std::size_t, measures> worse_flagged{}, better_recognised{};
+
+  void add(double error_before, double error_after, const smc::Map_diagnostics& before,
+           const smc::Map_diagnostics& after)
+  {
+    if(!(std::isfinite(error_before) && std::isfinite(error_after))) return;
+    const bool is_worse = error_after > error_before + 0.002, is_better = error_after < error_before - 0.002;
+    if(!is_worse && !is_better) return;
+    (is_worse ? worse : better) += 1;
+    for(std::size_t k = 0; k < measures; ++k)
+    {
+      const double b = value(before, k), a = value(after, k);
+      if(is_worse) worse_flagged[k] += a > b;
+      else better_recognised[k] += a < b;
+    }
+  }
+  static double share(std::size_t part, std::size_t whole) { return whole > 0 ? double(part) / double(whole) : 0.0; }
+  void write(Json_writer& json, const std::string& key) const
+  {
+    json.begin_object(key).value("worse", worse).value("better", better);
+    for(std::size_t k = 0; k < measures; ++k)
+      json.begin_object(name(k))
+          .value("worse_flagged", share(worse_flagged[k], worse))
+          .value("better_recognised", share(better_recognised[k], better))
+          .end_object();
+    json.end_object();
+  }
 };
 
 struct Pair_result
@@ -218,11 +289,13 @@ struct Aggregate
          fixed_points = 0, coverage = 0;
   std::vector<double> curve, symmetric_curve, cycle_curve;
   std::size_t count = 0;
+  std::size_t wrong = 0;  ///< maps whose median error is above 0.25: wrong as a whole
   bool has_symmetric = true;
 
   void add(const Map_quality& q)
   {
     ++count;
+    wrong += q.errors.median > 0.25;
     error += q.errors.mean;
     median_error += q.errors.median;
     within_0025 += q.errors.fraction_below(0.025);
@@ -258,7 +331,8 @@ void write_aggregate(Json_writer& json, const std::string& key, const Aggregate&
       .value("mean_error", a.error)
       .value("mean_median_error", a.median_error)
       .value("fraction_within_0.025", a.within_0025)
-      .value("fraction_within_0.05", a.within_005);
+      .value("fraction_within_0.05", a.within_005)
+      .value("wrong_maps", a.wrong);
   if(a.has_symmetric) json.value("mean_symmetric_error", a.symmetric_error);
   json.value("mean_cycle_error", a.cycle)
       .value("fixed_point_fraction", a.fixed_points)
@@ -297,6 +371,35 @@ Run_curves read_run_curves(const std::string& dir)
   if(r.thresholds.empty()) throw smc::IO_error(file + ": no curve in this file");
   if(r.label.empty()) r.label = dir;
   return r;
+}
+
+/// The separation table of the standard output (empty when no map or region changed by more
+/// than 0.002).
+std::string diagnostics_table(const Diagnostic_separation& maps, const Diagnostic_separation& regions)
+{
+  if(maps.worse + maps.better + regions.worse + regions.better == 0) return "";
+  std::ostringstream out;
+  auto cell = [](std::size_t part, std::size_t whole) {
+    return whole > 0 ? percent(double(part) / double(whole)) : std::string("-");
+  };
+  out << "ground-truth-free diagnostics, final against unrefined maps: the share of the maps (regions) made worse\n"
+      << "by more than 0.002 whose diagnostic rose, and of those made better whose diagnostic fell\n";
+  char line[200];
+  std::snprintf(line, sizeof(line), "%-22s %-25s %s\n", "", "maps", "regions");
+  out << line;
+  std::snprintf(line, sizeof(line), "%-22s %-12s %-12s %-12s %s\n", "",
+                ("worse " + std::to_string(maps.worse)).c_str(), ("better " + std::to_string(maps.better)).c_str(),
+                ("worse " + std::to_string(regions.worse)).c_str(), ("better " + std::to_string(regions.better)).c_str());
+  out << line;
+  for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
+  {
+    std::snprintf(line, sizeof(line), "%-22s %-12s %-12s %-12s %s\n", Diagnostic_separation::name(k),
+                  cell(maps.worse_flagged[k], maps.worse).c_str(), cell(maps.better_recognised[k], maps.better).c_str(),
+                  cell(regions.worse_flagged[k], regions.worse).c_str(),
+                  cell(regions.better_recognised[k], regions.better).c_str());
+    out << line;
+  }
+  return out.str();
 }
 
 } // namespace
@@ -437,6 +540,19 @@ int run_bench(int argc, char** argv)
       r.direction[1].initial = automatic ? r.direction[1].unrefined : evaluate(*B, *A, g21, g12);
       r.direction[0].refined = evaluate(*A, *B, m12, m21);
       r.direction[1].refined = evaluate(*B, *A, m21, m12);
+      if(m.diagnostics.computed)
+        for(int d = 0; d < 2; ++d)
+        {
+          Direction_result& x = r.direction[d];
+          const Bench_shape& source = d == 0 ? *A : *B;
+          const std::vector<int>& regions = d == 0 ? m.diagnostics.regions_1 : m.diagnostics.regions_2;
+          x.has_diagnostics = true;
+          x.diagnostics_before = m.diagnostics.before[d];
+          x.diagnostics_after = m.diagnostics.after[d];
+          const std::size_t count = x.diagnostics_before.regions.size();
+          x.region_error_before = region_errors(x.unrefined.errors, source.vts, regions, count);
+          x.region_error_after = region_errors(x.refined.errors, source.vts, regions, count);
+        }
       r.evaluation_seconds = eval_watch.seconds();
       write_vertex_maps(map_file(o.out + "/unrefined_maps", r.a, r.b), m.unrefined_map_12,
                         map_file(o.out + "/unrefined_maps", r.b, r.a), m.unrefined_map_21, 1);
@@ -486,6 +602,7 @@ int run_bench(int argc, char** argv)
   Aggregate initial, unrefined, refined;
   std::vector<double> pair_seconds, pair_seconds_with_preprocessing;
   std::size_t failed = 0, worsened = 0, maps = 0;
+  Diagnostic_separation map_separation, region_separation;
   double initialization_sum = 0, data_sum = 0, trws_sum = 0, refinement_sum = 0, selection_sum = 0;
   {
     smc::Atomic_output_file csv_file(o.out + "/pairs.csv");
@@ -497,7 +614,11 @@ int run_bench(int argc, char** argv)
            "inconsistent_before,inconsistent_after,refined_fraction,outer_iterations,kept_iterations,termination,"
            "preprocessing_seconds,initialization_seconds,data_preparation_seconds,trws_seconds,refinement_seconds,"
            "selection_seconds,match_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
-           "automatic_maps_kept,refined_as_automatic,given_maps_distortion,automatic_maps_distortion\n";
+           "automatic_maps_kept,refined_as_automatic,given_maps_distortion,automatic_maps_distortion";
+    for(const char* phase : {"unrefined", "final"})
+      for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
+        csv << "," << phase << "_" << Diagnostic_separation::name(k);
+    csv << "\n";
     for(const Pair_result& r : results)
     {
       if(!r.ok)
@@ -520,6 +641,14 @@ int run_bench(int argc, char** argv)
         refined.add(x.refined);
         ++maps;
         worsened += x.refined.errors.mean > x.unrefined.errors.mean + 0.002;
+        if(x.has_diagnostics)
+        {
+          map_separation.add(x.unrefined.errors.mean, x.refined.errors.mean, x.diagnostics_before.whole,
+                             x.diagnostics_after.whole);
+          for(std::size_t k = 0; k < x.region_error_before.size(); ++k)
+            region_separation.add(x.region_error_before[k], x.region_error_after[k], x.diagnostics_before.regions[k],
+                                  x.diagnostics_after.regions[k]);
+        }
         auto sym = [](const Map_quality& q) { return q.has_symmetric ? shortest(q.symmetric.mean) : std::string(""); };
         auto optional_value = [](double v) { return v < 0 ? std::string("") : shortest(v); };
         csv << r.a << "_" << r.b << "," << (d == 0 ? "12" : "21") << "," << x.source << "," << x.target << ","
@@ -543,7 +672,11 @@ int run_bench(int argc, char** argv)
             << "," << shortest(r.torn_fraction) << ","
             << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << ","
             << int(r.refined_as_automatic) << "," << optional_value(r.given_maps_distortion) << ","
-            << optional_value(r.automatic_maps_distortion) << "\n";
+            << optional_value(r.automatic_maps_distortion);
+        for(const smc::Map_diagnostics* g : {&x.diagnostics_before.whole, &x.diagnostics_after.whole})
+          for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
+            csv << "," << (x.has_diagnostics ? shortest(Diagnostic_separation::value(*g, k)) : std::string(""));
+        csv << "\n";
       }
     }
     commit_outputs({&csv_file});
@@ -643,6 +776,10 @@ int run_bench(int argc, char** argv)
     write_aggregate(json, "unrefined", unrefined);
     json.value("fraction_worsened_by_more_than_0.002", maps > 0 ? double(worsened) / double(maps) : 0.0);
     write_aggregate(json, "refined", refined);
+    json.begin_object("diagnostics_separation");
+    map_separation.write(json, "maps");
+    region_separation.write(json, "regions");
+    json.end_object();
     const double n = succeeded > 0 ? static_cast<double>(succeeded) : 1.0;
     json.begin_object("timings")
         .value("median_seconds_per_pair", median(pair_seconds))
@@ -663,7 +800,7 @@ int run_bench(int argc, char** argv)
 
   std::cout << "comap bench: " << succeeded << " pairs (" << 2 * succeeded << " maps) of " << o.data << ", initial maps: "
             << (automatic ? std::string("automatic") : o.init) << ", " << o.label << " refinement\n"
-            << "           mean error  within 0.025  within 0.05"
+            << "           mean error  median error  within 0.025  within 0.05"
             << (initial.has_symmetric ? "  sym. error" : "") << "  cycle error  fixed points\n";
   std::vector<std::pair<const char*, const Aggregate*> > rows{{"initial", &initial}};
   if(!automatic) rows.emplace_back("unrefined", &unrefined);
@@ -672,15 +809,19 @@ int run_bench(int argc, char** argv)
   {
     const Aggregate& g = *row.second;
     char line[200];
-    std::snprintf(line, sizeof(line), "%-9s  %10.4f  %12s  %11s", row.first, g.error, percent(g.within_0025).c_str(),
-                  percent(g.within_005).c_str());
+    std::snprintf(line, sizeof(line), "%-9s  %10.4f  %12.4f  %12s  %11s", row.first, g.error, g.median_error,
+                  percent(g.within_0025).c_str(), percent(g.within_005).c_str());
     std::cout << line;
     if(initial.has_symmetric) std::cout << "  " << std::setw(10) << fixed(g.symmetric_error, 4);
     std::snprintf(line, sizeof(line), "  %11.4f  %12s\n", g.cycle, percent(g.fixed_points).c_str());
     std::cout << line;
   }
-  std::cout << "maps whose final error exceeds the unrefined maps' error by more than 0.002: " << worsened << " of "
+  std::cout << "wrong maps (median error above 0.25): " << initial.wrong << " initial, "
+            << (automatic ? std::string() : std::to_string(unrefined.wrong) + " unrefined, ") << refined.wrong
+            << " final, of " << maps << "\n"
+            << "maps whose final error exceeds the unrefined maps' error by more than 0.002: " << worsened << " of "
             << maps << " (" << percent(maps > 0 ? double(worsened) / double(maps) : 0.0) << ")\n"
+            << diagnostics_table(map_separation, region_separation)
             << "median time per pair: " << duration(median(pair_seconds)) << " (match_shapes() on prepared shapes), "
             << duration(median(pair_seconds_with_preprocessing)) << " with the preparation of both shapes; wall time "
             << duration(wall_seconds) << "; peak memory " << fixed(peak_memory_mib(), 0) << " MiB (the whole run: "

@@ -60,6 +60,47 @@ bool Progress_visitor::refinement_step(const smc::Refinement_step& s)
   return true;
 }
 
+namespace {
+
+void write_diagnostics_fields(Json_writer& json, const smc::Map_diagnostics& d)
+{
+  json.value("vertices", d.vertices)
+      .value("inconsistent_fraction", d.inconsistent_fraction)
+      .value("cycle_error", d.cycle_error)
+      .value("distortion", d.distortion)
+      .value("distortion_samples", d.distortion_samples)
+      .value("descriptor_distance", d.descriptor_distance)
+      .value("energy", d.energy);
+}
+
+/// "diagnostics": {"map_12": {"before": {..., "regions": [{...}, ...]}, "after": {...}}, "map_21": ...}
+void write_diagnostics(Json_writer& json, const smc::Matching_diagnostics& diagnostics)
+{
+  json.begin_object("diagnostics");
+  for(int direction = 0; direction < 2; ++direction)
+  {
+    json.begin_object(direction == 0 ? "map_12" : "map_21");
+    for(int phase = 0; phase < 2; ++phase)
+    {
+      const smc::Direction_diagnostics& d = phase == 0 ? diagnostics.before[direction] : diagnostics.after[direction];
+      json.begin_object(phase == 0 ? "before" : "after");
+      write_diagnostics_fields(json, d.whole);
+      json.begin_array("regions");
+      for(const smc::Map_diagnostics& region : d.regions)
+      {
+        json.begin_object();
+        write_diagnostics_fields(json, region);
+        json.end_object();
+      }
+      json.end_array().end_object();
+    }
+    json.end_object();
+  }
+  json.end_object();
+}
+
+} // namespace
+
 void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r)
 {
   auto origin = [](smc::Map_origin o) { return o == smc::Map_origin::automatic ? "automatic" : "given"; };
@@ -96,6 +137,7 @@ void write_result(Json_writer& json, const std::string& key, const smc::Matching
       .value("cycle_error_after", r.cycle_error_after)
       .value("distortion_before", r.distortion_before)
       .value("distortion_after", r.distortion_after);
+  if(r.diagnostics.computed) write_diagnostics(json, r.diagnostics);
   json.begin_object("initialization")
       .value("functional_map_seconds", r.initialization.functional_map_seconds)
       .value("zoomout_seconds", r.initialization.zoomout_seconds)

@@ -167,8 +167,10 @@ def match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None
         What the run did, with the keys of ``comap match --stats``: ``decisions`` (one line per
         decision), ``stage_seconds``, ``inconsistent_vertices_before`` / ``_after``,
         ``cycle_error_before`` / ``_after``, ``distortion_before`` / ``_after``, ``selection``,
-        ``refinement`` (its TRW-S solves), ``unrefined_map_12`` / ``_21`` (the maps that entered
-        the refinement), ...
+        ``diagnostics`` (the ground-truth-free diagnostics of each direction before and after
+        the refinement, over each mesh and per region, with ``regions_1`` / ``_2``: the region
+        of every vertex), ``refinement`` (its TRW-S solves), ``unrefined_map_12`` / ``_21`` (the
+        maps that entered the refinement), ...
 
     Raises
     ------

@@ -113,6 +113,43 @@ py::array_t<std::int64_t> index_array(const Range& r)
 
 const char* origin_name(smc::Map_origin o) { return o == smc::Map_origin::automatic ? "automatic" : "given"; }
 
+py::dict diagnostics_dict(const smc::Map_diagnostics& m)
+{
+  py::dict d;
+  d["vertices"] = m.vertices;
+  d["inconsistent_fraction"] = m.inconsistent_fraction;
+  d["cycle_error"] = m.cycle_error;
+  d["distortion"] = m.distortion;
+  d["distortion_samples"] = m.distortion_samples;
+  d["descriptor_distance"] = m.descriptor_distance;
+  d["energy"] = m.energy;
+  return d;
+}
+
+/// Matching_diagnostics as `comap match --stats` writes it, plus the region of every vertex
+/// (`regions_1`, `regions_2`: numpy arrays).
+py::dict diagnostics_dict(const smc::Matching_diagnostics& g)
+{
+  py::dict out;
+  for(int direction = 0; direction < 2; ++direction)
+  {
+    py::dict phases;
+    for(int phase = 0; phase < 2; ++phase)
+    {
+      const smc::Direction_diagnostics& x = phase == 0 ? g.before[direction] : g.after[direction];
+      py::dict whole = diagnostics_dict(x.whole);
+      py::list regions;
+      for(const smc::Map_diagnostics& region : x.regions) regions.append(diagnostics_dict(region));
+      whole["regions"] = regions;
+      phases[phase == 0 ? "before" : "after"] = whole;
+    }
+    out[direction == 0 ? "map_12" : "map_21"] = phases;
+  }
+  out["regions_1"] = index_array(g.regions_1);
+  out["regions_2"] = index_array(g.regions_2);
+  return out;
+}
+
 /// The figures of Matching_result, with the keys of `comap match --stats` ("result").
 py::dict result_dict(const smc::Matching_result& r)
 {
@@ -147,6 +184,7 @@ py::dict result_dict(const smc::Matching_result& r)
   d["cycle_error_after"] = r.cycle_error_after;
   d["distortion_before"] = r.distortion_before;
   d["distortion_after"] = r.distortion_after;
+  if(r.diagnostics.computed) d["diagnostics"] = diagnostics_dict(r.diagnostics);
   py::dict stages;
   for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
     stages[smc::to_string(smc::Matching_stage(s))] = r.stage_seconds[std::size_t(s)];

@@ -89,6 +89,29 @@ def test_maps_are_maps_between_the_meshes(pair, result):
     assert info["unrefined_map_12"].shape == map_12.shape
 
 
+def test_diagnostics_are_those_of_the_returned_maps(pair, result):
+    # The diagnostics' consistency figures, recounted with numpy from the maps returned (after)
+    # and from the maps that entered the refinement (before); the regions cover every vertex.
+    V1, F1, V2, F2 = pair
+    map_12, map_21, info = result
+    g = info["diagnostics"]
+    for maps, phase in (((map_12, map_21), "after"),
+                        ((info["unrefined_map_12"], info["unrefined_map_21"]), "before")):
+        x12, x21 = maps
+        for (x, y, key) in ((x12, x21, "map_12"), (x21, x12, "map_21")):
+            d = g[key][phase]
+            assert d["vertices"] == len(x)
+            assert d["inconsistent_fraction"] == pytest.approx(np.mean(y[x] != np.arange(len(x))))
+            assert len(d["regions"]) == 16
+            assert sum(r["vertices"] for r in d["regions"]) == len(x)
+            assert d["energy"] == pytest.approx(
+                sum(r["energy"] * r["vertices"] for r in d["regions"]) / len(x))
+    for labels, n, key in ((g["regions_1"], len(V1), "map_12"), (g["regions_2"], len(V2), "map_21")):
+        assert labels.shape == (n,) and labels.min() == 0 and labels.max() == 15
+        counts = [r["vertices"] for r in g[key]["after"]["regions"]]
+        assert counts == list(np.bincount(labels, minlength=16))
+
+
 def test_maps_are_accurate(pair, result):
     # Mesh 2 is mesh 1 bent, with its vertices reordered: the true match of vertex i of mesh 1 is
     # vertex position[i] of mesh 2. On this smooth, asymmetric pair nearly all matches are exact.

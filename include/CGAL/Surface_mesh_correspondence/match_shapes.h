@@ -15,6 +15,7 @@
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/candidate_maps.h>
 #include <CGAL/Surface_mesh_correspondence/internal/given_maps_comparison.h>
+#include <CGAL/Surface_mesh_correspondence/internal/map_diagnostics.h>
 #include <CGAL/Surface_mesh_correspondence/internal/map_selection.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
@@ -86,6 +87,10 @@ struct Matching_result
   /// The mean mid-range geodesic distortion (see Selection_result) of the maps that entered the
   /// refinement and of the returned maps (0 when the refinement did not run).
   double distortion_before = 0, distortion_after = 0;
+  /// Ground-truth-free diagnostics (cycle consistency, distortion, descriptor distance, MRF
+  /// energy) of the maps that entered the refinement and of the returned maps, per direction,
+  /// over each mesh and per region (`diagnostic_regions`); computed when the refinement ran.
+  Matching_diagnostics diagnostics;
   /// The maps that entered the refinement, as vertex indices (mesh 1 -> 2 and 2 -> 1): the
   /// automatic maps, or the given maps after their repair and comparison.
   Vertex_index_map_vector unrefined_map_12, unrefined_map_21;
@@ -324,8 +329,11 @@ void refinement_stages(const Shape_data& d1, const Shape_data& d2, const Matchin
   result.stage_seconds[std::size_t(Matching_stage::refinement)] = events.end(Matching_stage::refinement);
 
   events.begin(Matching_stage::selection);
+  Fast_marching_geometry g1, g2;
+  invoke_both<ConcurrencyTag>([&] { g1.build(d1.mesh); }, [&] { g2.build(d2.mesh); });
+  const Selection_settings selection_settings = Selection_settings::from(settings);
   result.selection =
-      select_refined_maps<ConcurrencyTag>(d1, d2, input12, input21, x12, x21, Selection_settings::from(settings));
+      select_refined_maps<ConcurrencyTag>(d1, g1, d2, g2, input12, input21, x12, x21, selection_settings);
   const Selection_result& s = result.selection;
   result.distortion_before = s.input_distortion;
   result.distortion_after = s.selected_distortion;
@@ -344,6 +352,8 @@ void refinement_stages(const Shape_data& d1, const Shape_data& d2, const Matchin
           "maps are less consistent (" + std::to_string(s.inconsistent_refined) + " >= " +
           std::to_string(s.inconsistent_input) + " inconsistent vertices)";
   result.decisions.push_back("selection: " + why);
+  result.diagnostics = matching_diagnostics<ConcurrencyTag>(d1, g1, d2, g2, input12, input21, x12, x21,
+                                                            Diagnostics_settings::from(rs, selection_settings));
   result.stage_seconds[std::size_t(Matching_stage::selection)] = events.end(Matching_stage::selection);
   result.inconsistent_vertices_after = inconsistent_vertices(x12, x21);
   result.cycle_error_after = mean_cycle_error(d1, d2, x12, x21);

@@ -46,17 +46,20 @@ struct Selection_result
 namespace internal {
 
 /// Settings of the selection stage (the registry's `refinement_selection`, `selection_radius`,
-/// `selection_samples`, `selection_smoothing`).
+/// `selection_samples`, `selection_smoothing`) and of the diagnostics that follow it
+/// (`diagnostic_regions`).
 struct Selection_settings
 {
   Refinement_selection mode = matching_defaults().refinement_selection;
   double radius = matching_defaults().selection_radius;
   int samples = matching_defaults().selection_samples;
   int smoothing = matching_defaults().selection_smoothing;
+  int diagnostic_regions = matching_defaults().diagnostic_regions;
 
   static Selection_settings from(const Matching_settings& m)
   {
-    return {m.refinement_selection, m.selection_radius, m.selection_samples, m.selection_smoothing};
+    return {m.refinement_selection, m.selection_radius, m.selection_samples, m.selection_smoothing,
+            m.diagnostic_regions};
   }
 };
 
@@ -68,31 +71,29 @@ inline std::size_t inconsistent_vertices(const std::vector<int>& x12, const std:
   return c;
 }
 
-/// The mid-range distortion of the map `x` from `S` to `T` at each source vertex i: the vertices
-/// j at geodesic distance `radius` / 2 to `radius` from i (relative to the square root of the
-/// area; up to `samples` of them, spread over the ring by their order of acceptance) and the mean
-/// of |d_S(i, j) - d_T(x(i), x(j))| (both relative to the square roots of the areas; a target
-/// distance beyond 3 `radius` counts as 3 `radius`). Distances are exact fast marching distances.
-/// With `stride` > 1, only every stride-th vertex is scored (the others get 0): an estimate of the
-/// mean for reports.
+/// The mid-range distortion of the map `x` from `S` to `T` at the source vertices `vertices`
+/// (one value per listed vertex): for a vertex i, the vertices j at geodesic distance `radius` / 2
+/// to `radius` from i (relative to the square root of the area; up to `samples` of them, spread
+/// over the ring by their order of acceptance) and the mean of |d_S(i, j) - d_T(x(i), x(j))|
+/// (both relative to the square roots of the areas; a target distance beyond 3 `radius` counts as
+/// 3 `radius`; 0 when the ring is empty). Distances are exact fast marching distances.
 template <typename ConcurrencyTag>
-std::vector<double> midrange_distortion(const Indexed_mesh& S, const Fast_marching_geometry& gs, const Indexed_mesh& T,
-                                        const Fast_marching_geometry& gt, const std::vector<int>& x, double radius,
-                                        int samples, std::size_t stride = 1)
+std::vector<double> midrange_distortion_at(const Indexed_mesh& S, const Fast_marching_geometry& gs,
+                                           const Indexed_mesh& T, const Fast_marching_geometry& gt,
+                                           const std::vector<int>& x, double radius, int samples,
+                                           const std::vector<int>& vertices)
 {
-  const int n = S.number_of_vertices();
   const double scale_s = std::sqrt(S.total_area), scale_t = std::sqrt(T.total_area);
   const double cap = 3 * radius;
-  std::vector<double> out(std::size_t(n), 0.0);
+  std::vector<double> out(vertices.size(), 0.0);
   parallel_for_ranges<ConcurrencyTag>(
-      (std::size_t(n) + stride - 1) / stride,
+      vertices.size(),
       [&](std::size_t begin, std::size_t end) {
         Fast_marching_workspace ws(gs), wt(gt);
         std::vector<int> ring, picked, images;
         for(std::size_t k = begin; k < end; ++k)
         {
-          const std::size_t u = k * stride;
-          const int i = int(u);
+          const int i = vertices[k];
           ws.run(i, radius * scale_s);
           ring.clear();
           for(int v : ws.accepted())
@@ -104,7 +105,7 @@ std::vector<double> midrange_distortion(const Indexed_mesh& S, const Fast_marchi
             picked.push_back(ring[a]);
           images.clear();
           for(int j : picked) images.push_back(x[std::size_t(j)]);
-          const int source = x[u];
+          const int source = x[std::size_t(i)];
           wt.run(&source, 1, cap * scale_t, images.data(), images.size());
           double sum = 0;
           for(std::size_t a = 0; a < picked.size(); ++a)
@@ -112,10 +113,26 @@ std::vector<double> midrange_distortion(const Indexed_mesh& S, const Fast_marchi
             const double dt = wt.distance(images[a]);
             sum += std::abs(ws.distance(picked[a]) / scale_s - (std::isfinite(dt) ? dt / scale_t : cap));
           }
-          out[u] = sum / double(picked.size());
+          out[k] = sum / double(picked.size());
         }
       },
       64);
+  return out;
+}
+
+/// midrange_distortion_at() at every source vertex. With `stride` > 1, only every stride-th
+/// vertex is scored (the others get 0): an estimate of the mean for reports.
+template <typename ConcurrencyTag>
+std::vector<double> midrange_distortion(const Indexed_mesh& S, const Fast_marching_geometry& gs, const Indexed_mesh& T,
+                                        const Fast_marching_geometry& gt, const std::vector<int>& x, double radius,
+                                        int samples, std::size_t stride = 1)
+{
+  const std::size_t n = std::size_t(S.number_of_vertices());
+  std::vector<int> vertices;
+  for(std::size_t u = 0; u < n; u += stride) vertices.push_back(int(u));
+  const std::vector<double> scored = midrange_distortion_at<ConcurrencyTag>(S, gs, T, gt, x, radius, samples, vertices);
+  std::vector<double> out(n, 0.0);
+  for(std::size_t k = 0; k < vertices.size(); ++k) out[std::size_t(vertices[k])] = scored[k];
   return out;
 }
 
@@ -183,8 +200,10 @@ inline double select_regions(const Indexed_mesh& S, const std::vector<int>& inpu
 /// The selection stage: `x12` and `x21` (the refined maps) are replaced, as `settings` says, by
 /// the input maps `input12` and `input21` whole or region by region. The mid-range distortions
 /// of the input and refined maps are measured in every mode (they are part of the result).
+/// The fast marching geometries `g1` and `g2` are those of the meshes of `M1` and `M2`.
 template <typename ConcurrencyTag>
-Selection_result select_refined_maps(const Shape_data& M1, const Shape_data& M2, const std::vector<int>& input12,
+Selection_result select_refined_maps(const Shape_data& M1, const Fast_marching_geometry& g1, const Shape_data& M2,
+                                     const Fast_marching_geometry& g2, const std::vector<int>& input12,
                                      const std::vector<int>& input21, std::vector<int>& x12, std::vector<int>& x21,
                                      const Selection_settings& settings)
 {
@@ -197,8 +216,6 @@ Selection_result select_refined_maps(const Shape_data& M1, const Shape_data& M2,
   const bool whole = settings.mode != Refinement_selection::regions || r.refined_more_consistent;
   const std::size_t stride1 = whole ? std::max<std::size_t>(1, x12.size() / 1000) : 1;
   const std::size_t stride2 = whole ? std::max<std::size_t>(1, x21.size() / 1000) : 1;
-  Fast_marching_geometry g1, g2;
-  invoke_both<ConcurrencyTag>([&] { g1.build(M1.mesh); }, [&] { g2.build(M2.mesh); });
   Direction_scores d12, d21;
   auto scores = [&](const Indexed_mesh& S, const Fast_marching_geometry& gs, const Indexed_mesh& T,
                     const Fast_marching_geometry& gt, const std::vector<int>& x, std::size_t stride) {
@@ -232,6 +249,17 @@ Selection_result select_refined_maps(const Shape_data& M1, const Shape_data& M2,
   r.selected_distortion = 0.5 * (s12 + s21);
   r.inconsistent_selected = inconsistent_vertices(x12, x21);
   return r;
+}
+
+/// select_refined_maps() with the fast marching geometries built here.
+template <typename ConcurrencyTag>
+Selection_result select_refined_maps(const Shape_data& M1, const Shape_data& M2, const std::vector<int>& input12,
+                                     const std::vector<int>& input21, std::vector<int>& x12, std::vector<int>& x21,
+                                     const Selection_settings& settings)
+{
+  Fast_marching_geometry g1, g2;
+  invoke_both<ConcurrencyTag>([&] { g1.build(M1.mesh); }, [&] { g2.build(M2.mesh); });
+  return select_refined_maps<ConcurrencyTag>(M1, g1, M2, g2, input12, input21, x12, x21, settings);
 }
 
 } // namespace internal

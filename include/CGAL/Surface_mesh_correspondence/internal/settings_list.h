@@ -155,6 +155,9 @@
   X(selection_samples, int, 8, 8, range_between(1, 1000), selection,                                               \
     "vertices at distance selection_radius / 2 to selection_radius compared with each vertex")                     \
   X(selection_smoothing, int, 5, 5, range_between(0, 1000), selection,                                             \
-    "rounds of neighbour averaging of the distortion scores before the maps are compared vertex by vertex")
+    "rounds of neighbour averaging of the distortion scores before the maps are compared vertex by vertex")        \
+  X(diagnostic_regions, int, 16, 16, range_between(0, 100000), selection,                                          \
+    "regions of each mesh (cells of farthest point samples) over which the result's ground-truth-free "            \
+    "diagnostics are also reported (0: the whole meshes only)")
 
 #endif // CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_SETTINGS_LIST_H

@@ -1,0 +1,279 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Ground-truth-free diagnostics of a pair of maps, over each mesh and over regions of it: cycle
+// consistency, the distortion of mid-range geodesic distances, the distance between the
+// descriptors of matched vertices and the refinement's MRF energy. match_shapes() reports them for
+// the maps that entered the refinement and for the maps it returns, so that a caller (and the
+// benchmark) can tell where the refinement helped without knowing the true correspondence.
+
+#ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_MAP_DIAGNOSTICS_H
+#define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_MAP_DIAGNOSTICS_H
+
+#include <CGAL/Surface_mesh_correspondence/Correspondence_shape.h>
+#include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/internal/dijkstra.h>
+#include <CGAL/Surface_mesh_correspondence/internal/fast_marching.h>
+#include <CGAL/Surface_mesh_correspondence/internal/initialization_distortion.h>
+#include <CGAL/Surface_mesh_correspondence/internal/map_selection.h>
+#include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
+#include <CGAL/Surface_mesh_correspondence/refine_coupled_maps.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <queue>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_correspondence {
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Ground-truth-free measures of a map x from a source mesh S to a target mesh T (with the
+/// opposite map y from T to S), over all vertices of S or over one region of S. Lower is better
+/// for every measure; distances are relative to the square root of each mesh's area.
+struct Map_diagnostics
+{
+  /// Source vertices measured.
+  std::size_t vertices = 0;
+  /// The fraction of them with y(x(i)) != i (Eq. 4 of the paper, this direction).
+  double inconsistent_fraction = 0;
+  /// The mean Euclidean distance between i and y(x(i)).
+  double cycle_error = 0;
+  /// The mean mid-range geodesic distortion (see Selection_result) over the scored vertices among
+  /// them: about 1000 per mesh, spread by index, and the centre of every region.
+  double distortion = 0;
+  /// The scored vertices among them.
+  std::size_t distortion_samples = 0;
+  /// The mean squared distance |F_S(i) - F_T(x(i))|^2 between the descriptors (the refinement's
+  /// descriptor stack) of i and of its match.
+  double descriptor_distance = 0;
+  /// The refinement's MRF energy per vertex: mu |F_S(i) - F_T(x(i))|^2 + lambda d_S(i, y(x(i)))
+  /// plus half the sum over the mesh edges (i, j) of |d_S(i, j) - d_T(x(i), x(j))|, with the mu
+  /// and lambda the refinement used (so the energies of all vertices add up to the energy of the
+  /// map on the MRF of Eq. 1 with the cycle term and edge pairwise terms).
+  double energy = 0;
+};
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// The diagnostics of the map of one direction: over the whole source mesh and per region of it.
+struct Direction_diagnostics
+{
+  /// Over every vertex of the source mesh.
+  Map_diagnostics whole;
+  /// One entry per region of the source mesh (see Matching_diagnostics::regions_1; empty when
+  /// `diagnostic_regions` is 0).
+  std::vector<Map_diagnostics> regions;
+};
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// The ground-truth-free diagnostics of match_shapes(), for the maps that entered the refinement
+/// (`before`) and the returned maps (`after`); index 0 is the map 1 -> 2 (over the vertices and
+/// regions of mesh 1), index 1 the map 2 -> 1.
+struct Matching_diagnostics
+{
+  /// Whether they were computed (the refinement ran).
+  bool computed = false;
+  /// The region of each vertex of mesh 1 and of mesh 2 (in [0, number of regions)): the cells of
+  /// `diagnostic_regions` farthest point samples, each vertex in the cell of its nearest sample
+  /// along the edges. Empty when the diagnostics were not computed.
+  std::vector<int> regions_1, regions_2;
+  /// The maps that entered the refinement (`before`) and the returned maps (`after`).
+  std::array<Direction_diagnostics, 2> before, after;
+};
+
+namespace internal {
+
+/// The cells of `count` farthest point samples of `m` (edge-graph distances, the first sample at
+/// vertex 0): region[v] is the index of the sample nearest to v along the edges (ties: the
+/// smaller index), 0 for vertices no sample reaches. `centers` receives the samples.
+inline std::vector<int> farthest_point_regions(const Indexed_mesh& m, int count, std::vector<int>& centers)
+{
+  const int n = m.number_of_vertices();
+  std::vector<int> region(std::size_t(n), 0);
+  centers.clear();
+  if(n == 0 || count <= 0) return region;
+  centers = farthest_samples(m, std::min(count, n));
+  const Edge_length_graph g(m);
+  std::vector<double> distance(std::size_t(n), std::numeric_limits<double>::infinity());
+  std::vector<int> label(std::size_t(n), -1);
+  typedef std::pair<double, std::pair<int, int> > Item;  // (distance, (label, vertex))
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item> > heap;
+  for(std::size_t c = 0; c < centers.size(); ++c)
+  {
+    distance[std::size_t(centers[c])] = 0;
+    heap.push({0.0, {int(c), centers[c]}});
+  }
+  while(!heap.empty())
+  {
+    const Item top = heap.top();
+    heap.pop();
+    const int v = top.second.second;
+    if(label[std::size_t(v)] >= 0) continue;
+    label[std::size_t(v)] = top.second.first;
+    for(int k = m.neighbor_offsets[v]; k < m.neighbor_offsets[v + 1]; ++k)
+    {
+      const int w = m.neighbors[k];
+      const double d = top.first + g.lengths[k];
+      if(label[std::size_t(w)] < 0 && d <= distance[std::size_t(w)])
+      {
+        distance[std::size_t(w)] = d;
+        heap.push({d, {top.second.first, w}});
+      }
+    }
+  }
+  for(int v = 0; v < n; ++v) region[std::size_t(v)] = std::max(0, label[std::size_t(v)]);
+  return region;
+}
+
+/// The weights of the energy term (those of the refinement), the neighbourhoods of the
+/// distortion term (those of the selection) and the number of regions.
+struct Diagnostics_settings
+{
+  double unary_weight = 1, consistency_weight = 0;
+  double radius = 0.06;
+  int samples = 8;
+  int regions = 16;
+
+  static Diagnostics_settings from(const Refinement_settings& r, const Selection_settings& s)
+  {
+    return {r.unary_weight, r.use_coupling ? r.consistency_weight : 0.0, s.radius, s.samples, s.diagnostic_regions};
+  }
+};
+
+/// The regions of one mesh and its scored vertices (every stride-th vertex and every region
+/// centre, sorted).
+struct Diagnostics_layout
+{
+  std::vector<int> regions, centers, scored;
+  int number_of_regions = 0;  ///< 0: the whole mesh only
+
+  Diagnostics_layout(const Indexed_mesh& m, int count)
+  {
+    const int n = m.number_of_vertices();
+    regions = farthest_point_regions(m, count, centers);
+    number_of_regions = int(centers.size());
+    const int stride = std::max(1, n / 1000);
+    for(int v = 0; v < n; v += stride) scored.push_back(v);
+    scored.insert(scored.end(), centers.begin(), centers.end());
+    std::sort(scored.begin(), scored.end());
+    scored.erase(std::unique(scored.begin(), scored.end()), scored.end());
+  }
+};
+
+/// The diagnostics of the map `x` from `S` to `T` (opposite map `y`), over `S` and its regions.
+template <typename ConcurrencyTag>
+Direction_diagnostics direction_diagnostics(const Shape_data& S, const Fast_marching_geometry& gs, const Shape_data& T,
+                                            const Fast_marching_geometry& gt, const std::vector<int>& x,
+                                            const std::vector<int>& y, const Diagnostics_layout& layout,
+                                            const Diagnostics_settings& settings)
+{
+  const int n = S.number_of_vertices();
+  const double scale_s = std::sqrt(S.mesh.total_area);
+  const double unit_s = 1.0 / S.scale, unit_t = 1.0 / T.scale;
+  // Per vertex: inconsistent, cycle error, descriptor distance, energy.
+  std::vector<std::array<double, 4> > values(static_cast<std::size_t>(n));
+  std::visit(
+      [&](const auto& source_oracle) {
+        std::visit(
+            [&](const auto& target_oracle) {
+              parallel_for_ranges<ConcurrencyTag>(
+                  std::size_t(n),
+                  [&](std::size_t begin, std::size_t end) {
+                    for(std::size_t u = begin; u < end; ++u)
+                    {
+                      const int i = int(u), xi = x[u], back = y[std::size_t(xi)];
+                      const double descriptor = (S.descriptors.row(i) - T.descriptors.row(xi)).squaredNorm();
+                      double pairwise = 0;
+                      for(const int* j = S.mesh.neighbors_begin(i); j != S.mesh.neighbors_end(i); ++j)
+                        pairwise += std::abs(source_oracle.distance(i, *j) * unit_s -
+                                             target_oracle.distance(xi, x[std::size_t(*j)]) * unit_t);
+                      const double cycle_term =
+                          back == i ? 0.0 : settings.consistency_weight * source_oracle.distance(i, back) * unit_s;
+                      values[u] = {double(back != i),
+                                   (S.mesh.points.row(i) - S.mesh.points.row(back)).norm() / scale_s, descriptor,
+                                   settings.unary_weight * descriptor + cycle_term + 0.5 * pairwise};
+                    }
+                  },
+                  256);
+            },
+            T.oracle);
+      },
+      S.oracle);
+  const std::vector<double> distortion = midrange_distortion_at<ConcurrencyTag>(
+      S.mesh, gs, T.mesh, gt, x, settings.radius, settings.samples, layout.scored);
+
+  Direction_diagnostics out;
+  out.regions.assign(std::size_t(layout.number_of_regions), Map_diagnostics());
+  auto add = [](Map_diagnostics& d, const std::array<double, 4>& v) {
+    ++d.vertices;
+    d.inconsistent_fraction += v[0];
+    d.cycle_error += v[1];
+    d.descriptor_distance += v[2];
+    d.energy += v[3];
+  };
+  const bool per_region = !out.regions.empty();
+  for(int i = 0; i < n; ++i)
+  {
+    add(out.whole, values[std::size_t(i)]);
+    if(per_region) add(out.regions[std::size_t(layout.regions[std::size_t(i)])], values[std::size_t(i)]);
+  }
+  for(std::size_t k = 0; k < layout.scored.size(); ++k)
+  {
+    out.whole.distortion += distortion[k];
+    ++out.whole.distortion_samples;
+    if(!per_region) continue;
+    Map_diagnostics& r = out.regions[std::size_t(layout.regions[std::size_t(layout.scored[k])])];
+    r.distortion += distortion[k];
+    ++r.distortion_samples;
+  }
+  auto finish = [](Map_diagnostics& d) {
+    const double c = d.vertices > 0 ? double(d.vertices) : 1.0;
+    d.inconsistent_fraction /= c;
+    d.cycle_error /= c;
+    d.descriptor_distance /= c;
+    d.energy /= c;
+    if(d.distortion_samples > 0) d.distortion /= double(d.distortion_samples);
+  };
+  finish(out.whole);
+  for(Map_diagnostics& r : out.regions) finish(r);
+  return out;
+}
+
+/// The diagnostics of the maps before (`b12`, `b21`) and after (`a12`, `a21`) the refinement.
+template <typename ConcurrencyTag>
+Matching_diagnostics matching_diagnostics(const Shape_data& M1, const Fast_marching_geometry& g1, const Shape_data& M2,
+                                          const Fast_marching_geometry& g2, const std::vector<int>& b12,
+                                          const std::vector<int>& b21, const std::vector<int>& a12,
+                                          const std::vector<int>& a21, const Diagnostics_settings& settings)
+{
+  Matching_diagnostics d;
+  std::optional<Diagnostics_layout> l1, l2;
+  invoke_both<ConcurrencyTag>([&] { l1.emplace(M1.mesh, settings.regions); },
+                              [&] { l2.emplace(M2.mesh, settings.regions); });
+  invoke_both<ConcurrencyTag>(
+      [&] {
+        d.before[0] = direction_diagnostics<ConcurrencyTag>(M1, g1, M2, g2, b12, b21, *l1, settings);
+        d.after[0] = direction_diagnostics<ConcurrencyTag>(M1, g1, M2, g2, a12, a21, *l1, settings);
+      },
+      [&] {
+        d.before[1] = direction_diagnostics<ConcurrencyTag>(M2, g2, M1, g1, b21, b12, *l2, settings);
+        d.after[1] = direction_diagnostics<ConcurrencyTag>(M2, g2, M1, g1, a21, a12, *l2, settings);
+      });
+  d.regions_1 = std::move(l1->regions);
+  d.regions_2 = std::move(l2->regions);
+  d.computed = true;
+  return d;
+}
+
+} // namespace internal
+} // namespace Surface_mesh_correspondence
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_MAP_DIAGNOSTICS_H
