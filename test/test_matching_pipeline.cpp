@@ -1590,6 +1590,24 @@ BOOST_AUTO_TEST_CASE(diagnostics_match_independent_recounts_and_the_refinements_
       BOOST_TEST(x->whole.distortion > 0.0);
     }
 
+  // Global distortion: the first 64 farthest point samples' pairwise fast marching distances,
+  // recomputed one row at a time (pairwise_geodesic_distances), against their images'.
+  auto global = [](const Sequential_shape& S, const Sequential_shape& T, const Index_map& x) {
+    smc::internal::Fast_marching_geometry gs, gt;
+    gs.build(S.data().mesh);
+    gt.build(T.data().mesh);
+    const std::vector<int> samples = smc::internal::farthest_samples(S.data().mesh, 64);
+    std::vector<int> images;
+    for(int a : samples) images.push_back(int(x[std::size_t(a)]));
+    const Eigen::MatrixXd ds =
+        smc::internal::pairwise_geodesic_distances(gs, samples, std::sqrt(S.data().mesh.total_area));
+    const Eigen::MatrixXd dt =
+        smc::internal::pairwise_geodesic_distances(gt, images, std::sqrt(T.data().mesh.total_area));
+    return (ds - dt).cwiseAbs().sum() / (64.0 * 63.0);
+  };
+  BOOST_TEST(g.before[0].whole.global_distortion == global(d.bent1, d.bent2, b12), tt::tolerance(1e-9));
+  BOOST_TEST(g.after[1].whole.global_distortion == global(d.bent2, d.bent1, r.m21), tt::tolerance(1e-9));
+
   // Energy: the refinement's own MRF (built by build_energy on candidates whose label 0 is the
   // current match) evaluated at label 0 everywhere, with the weights of the run.
   const smc::Refinement_settings rs = smc::Refinement_settings::from(settings.resolved(smc::Map_origin::automatic));
@@ -1609,7 +1627,8 @@ BOOST_AUTO_TEST_CASE(diagnostics_match_independent_recounts_and_the_refinements_
                      << g.before[0].whole.distortion << " / " << g.after[0].whole.distortion << ", energy "
                      << g.before[0].whole.energy << " / " << g.after[0].whole.energy);
 
-  // diagnostic_regions = 0: the whole meshes only; without the refinement: none.
+  // diagnostic_regions = 0: the whole meshes only; without the refinement: those of the maps
+  // returned, before and after.
   smc::Matching_settings no_regions = settings;
   no_regions.set("diagnostic_regions", 0.0);
   const Run z = run_shapes(d.bent1, d.bent2, params::matching_settings(no_regions));
@@ -1618,7 +1637,52 @@ BOOST_AUTO_TEST_CASE(diagnostics_match_independent_recounts_and_the_refinements_
   BOOST_TEST(z.result.diagnostics.after[0].whole.energy == g.after[0].whole.energy);
   smc::Matching_settings unrefined = settings;
   unrefined.set("use_refinement", false);
-  BOOST_TEST(!run_shapes(d.bent1, d.bent2, params::matching_settings(unrefined)).result.diagnostics.computed);
+  const Run u = run_shapes(d.bent1, d.bent2, params::matching_settings(unrefined));
+  BOOST_TEST_REQUIRE(u.result.diagnostics.computed);
+  BOOST_TEST((u.m12 == b12));
+  BOOST_TEST(u.result.diagnostics.after[0].whole.energy == g.before[0].whole.energy);
+  BOOST_TEST(u.result.diagnostics.before[1].whole.global_distortion == g.before[1].whole.global_distortion);
+}
+
+BOOST_AUTO_TEST_CASE(a_mirror_map_reverses_every_triangle)
+{
+  // Mesh 2 is mesh 1 mirrored (x -> -x) with its triangles turned to stay outward: the identity
+  // of vertex indices is then a mirror map, which reverses every triangle; the identity from
+  // mesh 1 to itself reverses none.
+  const Mesh& m = data().copy.m1;
+  std::vector<Point> points;
+  for(Vertex v : m.vertices()) points.emplace_back(-m.point(v).x(), m.point(v).y(), m.point(v).z());
+  std::vector<std::array<int, 3> > triangles;
+  for(auto f : m.faces())
+  {
+    std::vector<int> t;
+    for(Vertex v : m.vertices_around_face(m.halfedge(f))) t.push_back(int(v.idx()));
+    triangles.push_back({{t[0], t[2], t[1]}});
+  }
+  const Sequential_shape mirrored(smc_test::mesh_from_soup(points, triangles), params::matching_settings(fast_settings()));
+  const Sequential_shape& original = data().copy1;
+  std::vector<int> identity(num_vertices(m));
+  std::iota(identity.begin(), identity.end(), 0);
+  smc::internal::Fast_marching_geometry g1, g2;
+  g1.build(original.data().mesh);
+  g2.build(mirrored.data().mesh);
+  const smc::internal::Diagnostics_layout layout(original.data().mesh, g1, 4, CGAL::Sequential_tag());
+  const smc::internal::Diagnostics_settings s;
+  const smc::Direction_diagnostics mirror = smc::internal::direction_diagnostics<CGAL::Sequential_tag>(
+      original.data(), g1, mirrored.data(), g2, identity, identity, layout, s);
+  const smc::Direction_diagnostics same = smc::internal::direction_diagnostics<CGAL::Sequential_tag>(
+      original.data(), g1, original.data(), g1, identity, identity, layout, s);
+  BOOST_TEST(mirror.whole.orientation_reversal == 1.0);
+  BOOST_TEST(same.whole.orientation_reversal == 0.0);
+  for(std::size_t r = 0; r < layout.centers.size(); ++r)
+  {
+    BOOST_TEST(mirror.regions[r].orientation_reversal == 1.0);
+    BOOST_TEST(same.regions[r].orientation_reversal == 0.0);
+  }
+  // A mirror is an isometry: consistent, undistorted.
+  BOOST_TEST(mirror.whole.inconsistent_fraction == 0.0);
+  BOOST_TEST(mirror.whole.distortion < 1e-6);
+  BOOST_TEST(mirror.whole.global_distortion < 1e-6);
 }
 
 BOOST_AUTO_TEST_CASE(diagnostics_of_exact_maps_are_zero_but_for_the_descriptors)
@@ -1635,6 +1699,7 @@ BOOST_AUTO_TEST_CASE(diagnostics_of_exact_maps_are_zero_but_for_the_descriptors)
     BOOST_TEST(x.cycle_error == 0.0);
     BOOST_TEST(x.distortion < 1e-6);
     BOOST_TEST(x.descriptor_distance < 1e-3);
+    BOOST_TEST(x.orientation_reversal == 0.0);
   }
 }
 

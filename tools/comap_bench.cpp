@@ -148,16 +148,19 @@ std::vector<double> region_errors(const smc::Error_statistics& e, const Vertex_m
 /// more than 0.002; a diagnostic says "worse" when its value rose.
 struct Diagnostic_separation
 {
-  static constexpr std::size_t measures = 5;
+  static constexpr std::size_t measures = 7;
   static const char* name(std::size_t k)
   {
-    static const char* names[measures] = {"inconsistent_fraction", "cycle_error", "distortion", "descriptor_distance",
+    static const char* names[measures] = {"inconsistent_fraction", "cycle_error",          "distortion",
+                                          "global_distortion",     "descriptor_distance",  "orientation_reversal",
                                           "energy"};
     return names[k];
   }
   static double value(const smc::Map_diagnostics& d, std::size_t k)
   {
-    const double v[measures] = {d.inconsistent_fraction, d.cycle_error, d.distortion, d.descriptor_distance, d.energy};
+    const double v[measures] = {d.inconsistent_fraction, d.cycle_error,         d.distortion,
+                                d.global_distortion,     d.descriptor_distance, d.orientation_reversal,
+                                d.energy};
     return v[k];
   }
   std::size_t worse = 0, better = 0;

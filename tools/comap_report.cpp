@@ -69,7 +69,9 @@ void write_diagnostics_fields(Json_writer& json, const smc::Map_diagnostics& d)
       .value("cycle_error", d.cycle_error)
       .value("distortion", d.distortion)
       .value("distortion_samples", d.distortion_samples)
+      .value("global_distortion", d.global_distortion)
       .value("descriptor_distance", d.descriptor_distance)
+      .value("orientation_reversal", d.orientation_reversal)
       .value("energy", d.energy);
 }
 

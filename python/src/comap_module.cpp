@@ -121,7 +121,9 @@ py::dict diagnostics_dict(const smc::Map_diagnostics& m)
   d["cycle_error"] = m.cycle_error;
   d["distortion"] = m.distortion;
   d["distortion_samples"] = m.distortion_samples;
+  d["global_distortion"] = m.global_distortion;
   d["descriptor_distance"] = m.descriptor_distance;
+  d["orientation_reversal"] = m.orientation_reversal;
   d["energy"] = m.energy;
   return d;
 }

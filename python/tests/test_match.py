@@ -102,6 +102,7 @@ def test_diagnostics_are_those_of_the_returned_maps(pair, result):
             d = g[key][phase]
             assert d["vertices"] == len(x)
             assert d["inconsistent_fraction"] == pytest.approx(np.mean(y[x] != np.arange(len(x))))
+            assert 0 <= d["orientation_reversal"] < 0.05  # accurate maps keep the orientation
             assert len(d["regions"]) == 16
             assert sum(r["vertices"] for r in d["regions"]) == len(x)
             assert d["energy"] == pytest.approx(

@@ -87,9 +87,10 @@ struct Matching_result
   /// The mean mid-range geodesic distortion (see Selection_result) of the maps that entered the
   /// refinement and of the returned maps (0 when the refinement did not run).
   double distortion_before = 0, distortion_after = 0;
-  /// Ground-truth-free diagnostics (cycle consistency, distortion, descriptor distance, MRF
-  /// energy) of the maps that entered the refinement and of the returned maps, per direction,
-  /// over each mesh and per region (`diagnostic_regions`); computed when the refinement ran.
+  /// Ground-truth-free diagnostics (cycle consistency, distortion, descriptor distance,
+  /// orientation, MRF energy) of the maps that entered the refinement and of the returned maps
+  /// (the same maps when the refinement did not run), per direction, over each mesh and per
+  /// region (`diagnostic_regions`).
   Matching_diagnostics diagnostics;
   /// The maps that entered the refinement, as vertex indices (mesh 1 -> 2 and 2 -> 1): the
   /// automatic maps, or the given maps after their repair and comparison.
@@ -306,15 +307,21 @@ void refinement_stages(const Shape_data& d1, const Shape_data& d2, const Matchin
 {
   result.inconsistent_vertices_before = inconsistent_vertices(x12, x21);
   result.cycle_error_before = mean_cycle_error(d1, d2, x12, x21);
+  const Matching_settings resolved = settings.resolved(result.refined_maps);
+  const Refinement_settings rs = Refinement_settings::from(resolved);
+  const Selection_settings selection_settings = Selection_settings::from(settings);
   if(!settings.use_refinement)
   {
     result.decisions.push_back("refinement: not run (use_refinement is false)");
     result.inconsistent_vertices_after = result.inconsistent_vertices_before;
     result.cycle_error_after = result.cycle_error_before;
+    // The diagnostics of the returned maps (no stage of their own: a fraction of a second).
+    Fast_marching_geometry g1, g2;
+    invoke_both<ConcurrencyTag>([&] { g1.build(d1.mesh); }, [&] { g2.build(d2.mesh); });
+    result.diagnostics = matching_diagnostics<ConcurrencyTag>(d1, g1, d2, g2, x12, x21, x12, x21,
+                                                              Diagnostics_settings::from(rs, selection_settings));
     return;
   }
-  const Matching_settings resolved = settings.resolved(result.refined_maps);
-  const Refinement_settings rs = Refinement_settings::from(resolved);
   const std::vector<int> input12 = x12, input21 = x21;
   events.begin(Matching_stage::refinement);
   result.refinement = refine_coupled_maps<ConcurrencyTag>(d1, d2, x12, x21, rs, events);
@@ -331,7 +338,6 @@ void refinement_stages(const Shape_data& d1, const Shape_data& d2, const Matchin
   events.begin(Matching_stage::selection);
   Fast_marching_geometry g1, g2;
   invoke_both<ConcurrencyTag>([&] { g1.build(d1.mesh); }, [&] { g2.build(d2.mesh); });
-  const Selection_settings selection_settings = Selection_settings::from(settings);
   result.selection =
       select_refined_maps<ConcurrencyTag>(d1, g1, d2, g2, input12, input21, x12, x21, selection_settings);
   const Selection_result& s = result.selection;

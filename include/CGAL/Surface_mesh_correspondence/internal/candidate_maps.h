@@ -87,14 +87,11 @@ inline double orientation_agreement(const Indexed_mesh& source, const Indexed_me
   double agree = 0, total = 0;
   for(int t = 0; t < source.number_of_triangles(); ++t)
   {
-    const int a = map[source.triangles(t, 0)], b = map[source.triangles(t, 1)], c = map[source.triangles(t, 2)];
-    if(a == b || b == c || a == c) continue;
-    const Eigen::Vector3d normal = (target.point(b) - target.point(a)).cross(target.point(c) - target.point(a));
-    const Eigen::Vector3d reference =
-        (target_normals.row(a) + target_normals.row(b) + target_normals.row(c)).transpose();
+    const int orientation = image_orientation(source, target, target_normals, map, t);
+    if(orientation < 0) continue;
     const double w = source.triangle_areas[t];
     total += w;
-    if(normal.dot(reference) > 0) agree += w;
+    if(orientation == 1) agree += w;
   }
   return total > 0 ? agree / total : 0.5;
 }

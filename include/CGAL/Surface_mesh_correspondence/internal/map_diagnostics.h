@@ -17,6 +17,7 @@
 #include <CGAL/Surface_mesh_correspondence/internal/initialization_distortion.h>
 #include <CGAL/Surface_mesh_correspondence/internal/map_selection.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
+#include <CGAL/Surface_mesh_correspondence/internal/vertex_normals.h>
 #include <CGAL/Surface_mesh_correspondence/refine_coupled_maps.h>
 
 #include <algorithm>
@@ -51,9 +52,20 @@ struct Map_diagnostics
   double distortion = 0;
   /// The scored vertices among them.
   std::size_t distortion_samples = 0;
+  /// The mean over pairs of far apart vertices (a, b) of |d_S(a, b) - d_T(x(a), x(b))|: the
+  /// geodesic distances between the first 64 farthest point samples of the source and between
+  /// their images (the pairs whose first vertex is in the region, for a region). Unlike
+  /// `distortion`, it sees maps that are smooth but wrong as a whole (a part sent to another part).
+  double global_distortion = 0;
   /// The mean squared distance |F_S(i) - F_T(x(i))|^2 between the descriptors (the refinement's
   /// descriptor stack) of i and of its match.
   double descriptor_distance = 0;
+  /// The area-weighted fraction of the source triangles (with three distinct images) whose image
+  /// is reversed on the target (its normal against the target's vertex normals): about 0 for an
+  /// orientation-preserving map, 1 for a mirror map (a left-right flip), 1/2 for a scrambled one.
+  /// Both meshes are taken to be oriented the same way (e.g. outwards). A region's triangles are
+  /// those whose first corner is in the region.
+  double orientation_reversal = 0;
   /// The refinement's MRF energy per vertex: mu |F_S(i) - F_T(x(i))|^2 + lambda d_S(i, y(x(i)))
   /// plus half the sum over the mesh edges (i, j) of |d_S(i, j) - d_T(x(i), x(j))|, with the mu
   /// and lambda the refinement used (so the energies of all vertices add up to the energy of the
@@ -78,7 +90,7 @@ struct Direction_diagnostics
 /// regions of mesh 1), index 1 the map 2 -> 1.
 struct Matching_diagnostics
 {
-  /// Whether they were computed (the refinement ran).
+  /// Whether they were computed (always by match_shapes()).
   bool computed = false;
   /// The region of each vertex of mesh 1 and of mesh 2 (in [0, number of regions)): the cells of
   /// `diagnostic_regions` farthest point samples, each vertex in the cell of its nearest sample
@@ -147,18 +159,24 @@ struct Diagnostics_settings
   }
 };
 
-/// The regions of one mesh and its scored vertices (every stride-th vertex and every region
-/// centre, sorted).
+/// The regions of one mesh, its scored vertices (every stride-th vertex and every region centre,
+/// sorted), and its far apart samples with their geodesic distances (for `global_distortion`).
 struct Diagnostics_layout
 {
+  static constexpr int global_samples = 64;
   std::vector<int> regions, centers, scored;
   int number_of_regions = 0;  ///< 0: the whole mesh only
+  std::vector<int> samples;   ///< the first `global_samples` farthest point samples
+  Vertex_set_distances sample_distances;  ///< between them, over the square root of the area
 
-  Diagnostics_layout(const Indexed_mesh& m, int count)
+  template <typename ConcurrencyTag>
+  Diagnostics_layout(const Indexed_mesh& m, const Fast_marching_geometry& g, int count, ConcurrencyTag)
   {
     const int n = m.number_of_vertices();
     regions = farthest_point_regions(m, count, centers);
     number_of_regions = int(centers.size());
+    samples = farthest_samples(m, std::min(n, global_samples));
+    sample_distances.compute<ConcurrencyTag>(g, samples, std::sqrt(m.total_area));
     const int stride = std::max(1, n / 1000);
     for(int v = 0; v < n; v += stride) scored.push_back(v);
     scored.insert(scored.end(), centers.begin(), centers.end());
@@ -206,6 +224,46 @@ Direction_diagnostics direction_diagnostics(const Shape_data& S, const Fast_marc
             T.oracle);
       },
       S.oracle);
+  // Orientation: the reversed and the counted area of the source triangles, per region of their
+  // first corner.
+  const Indexed_mesh::Points target_normals = vertex_normals(T.mesh);
+  std::vector<double> reversed_area(std::size_t(std::max(1, layout.number_of_regions)), 0.0),
+      counted_area(reversed_area.size(), 0.0);
+  double reversed_total = 0, counted_total = 0;
+  for(int t = 0; t < S.mesh.number_of_triangles(); ++t)
+  {
+    const int orientation = image_orientation(S.mesh, T.mesh, target_normals, x, t);
+    if(orientation < 0) continue;
+    const double area = S.mesh.triangle_areas[std::size_t(t)];
+    const std::size_t r = layout.number_of_regions > 0 ? std::size_t(layout.regions[std::size_t(S.mesh.triangles(t, 0))]) : 0;
+    counted_area[r] += area;
+    counted_total += area;
+    if(orientation == 0)
+    {
+      reversed_area[r] += area;
+      reversed_total += area;
+    }
+  }
+  // Global distortion: the samples' distances against their images'.
+  std::vector<int> images;
+  for(int a : layout.samples) images.push_back(x[std::size_t(a)]);
+  Vertex_set_distances image_distances;
+  image_distances.compute<ConcurrencyTag>(gt, images, std::sqrt(T.mesh.total_area));
+  std::vector<double> global_sum(reversed_area.size(), 0.0), global_count(reversed_area.size(), 0.0);
+  double global_total = 0;
+  for(std::size_t a = 0; a < layout.samples.size(); ++a)
+  {
+    double sum = 0;
+    for(std::size_t b = 0; b < layout.samples.size(); ++b)
+      if(a != b)
+        sum += std::abs(layout.sample_distances.distance(layout.samples[a], layout.samples[b]) -
+                        image_distances.distance(images[a], images[b]));
+    const std::size_t r =
+        layout.number_of_regions > 0 ? std::size_t(layout.regions[std::size_t(layout.samples[a])]) : 0;
+    global_sum[r] += sum;
+    global_count[r] += double(layout.samples.size() - 1);
+    global_total += sum;
+  }
   const std::vector<double> distortion = midrange_distortion_at<ConcurrencyTag>(
       S.mesh, gs, T.mesh, gt, x, settings.radius, settings.samples, layout.scored);
 
@@ -243,6 +301,15 @@ Direction_diagnostics direction_diagnostics(const Shape_data& S, const Fast_marc
   };
   finish(out.whole);
   for(Map_diagnostics& r : out.regions) finish(r);
+  auto fraction = [](double part, double whole) { return whole > 0 ? part / whole : 0.5; };
+  out.whole.orientation_reversal = fraction(reversed_total, counted_total);
+  const double pairs = double(layout.samples.size()) * double(layout.samples.size() - 1);
+  out.whole.global_distortion = pairs > 0 ? global_total / pairs : 0.0;
+  for(std::size_t r = 0; r < out.regions.size(); ++r)
+  {
+    out.regions[r].orientation_reversal = fraction(reversed_area[r], counted_area[r]);
+    out.regions[r].global_distortion = global_count[r] > 0 ? global_sum[r] / global_count[r] : 0.0;
+  }
   return out;
 }
 
@@ -255,8 +322,8 @@ Matching_diagnostics matching_diagnostics(const Shape_data& M1, const Fast_march
 {
   Matching_diagnostics d;
   std::optional<Diagnostics_layout> l1, l2;
-  invoke_both<ConcurrencyTag>([&] { l1.emplace(M1.mesh, settings.regions); },
-                              [&] { l2.emplace(M2.mesh, settings.regions); });
+  invoke_both<ConcurrencyTag>([&] { l1.emplace(M1.mesh, g1, settings.regions, ConcurrencyTag()); },
+                              [&] { l2.emplace(M2.mesh, g2, settings.regions, ConcurrencyTag()); });
   invoke_both<ConcurrencyTag>(
       [&] {
         d.before[0] = direction_diagnostics<ConcurrencyTag>(M1, g1, M2, g2, b12, b21, *l1, settings);

@@ -9,6 +9,8 @@
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace CGAL {
 namespace Surface_mesh_correspondence {
@@ -47,6 +49,21 @@ inline Indexed_mesh::Points vertex_normals(const Indexed_mesh& m)
       normals.row(v).setZero();
   }
   return normals;
+}
+
+/// How the image of triangle `t` of `source` under `map` lies on `target`: -1 when two of its
+/// vertices have the same image, 1 when the image triangle has the orientation of `target` (its
+/// normal agrees with the sum of the target's vertex normals `target_normals` at its corners), 0
+/// when it is reversed (a mirror map reverses every triangle).
+inline int image_orientation(const Indexed_mesh& source, const Indexed_mesh& target,
+                             const Indexed_mesh::Points& target_normals, const std::vector<int>& map, int t)
+{
+  const int a = map[std::size_t(source.triangles(t, 0))], b = map[std::size_t(source.triangles(t, 1))],
+            c = map[std::size_t(source.triangles(t, 2))];
+  if(a == b || b == c || a == c) return -1;
+  const Eigen::Vector3d normal = (target.point(b) - target.point(a)).cross(target.point(c) - target.point(a));
+  const Eigen::Vector3d reference = (target_normals.row(a) + target_normals.row(b) + target_normals.row(c)).transpose();
+  return normal.dot(reference) > 0 ? 1 : 0;
 }
 
 } // namespace internal
