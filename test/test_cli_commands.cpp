@@ -255,6 +255,24 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   const double regions_error = mean_error(p.pair.m2, regions.first, p.pair.gt_12);
   BOOST_TEST_MESSAGE("automatic map 1->2 " << automatic_error << ", refined and selected (default) " << regions_error);
   BOOST_TEST(regions_error < automatic_error);
+  // The confidence: these accurate maps are trusted (a line on stdout, no warning, "low": false
+  // in the stats); a threshold of 1 flags any map, and comap warns on stderr, even with --quiet.
+  {
+    const Run trusted = comap("match " + p.a + " " + p.b + " --quiet --out-12 " + in_scratch("t12.map") +
+                              " --out-21 " + in_scratch("t21.map") + " --stats " + in_scratch("t.json") + fast_options());
+    BOOST_TEST_REQUIRE(trusted.code == 0, trusted.err);
+    BOOST_TEST(trusted.out.find("confidence: ") != std::string::npos);
+    BOOST_TEST(trusted.err.find("warning") == std::string::npos, trusted.err);
+    const std::string stats = read_text(in_scratch("t.json"));
+    BOOST_TEST(stats.find("\"confidence\": {") != std::string::npos);
+    BOOST_TEST(stats.find("\"low\": false") != std::string::npos);
+    const Run flagged = comap("match " + p.a + " " + p.b + " --quiet --set confidence_threshold=1 --out-12 " +
+                              in_scratch("f12.map") + " --out-21 " + in_scratch("f21.map") + fast_options());
+    BOOST_TEST_REQUIRE(flagged.code == 0, flagged.err);
+    BOOST_TEST(flagged.err.find("comap: warning: low confidence") != std::string::npos, flagged.err);
+    BOOST_TEST(flagged.out.find("confidence: ") != std::string::npos);
+    BOOST_TEST((read_map(in_scratch("f12.map"), 1) == read_map(in_scratch("t12.map"), 1)));  // a report only
+  }
   // Without the early stop, the whole schedule runs (ring_schedule [3, 2]: 2 outer iterations).
   run(" --set stop_when_consistency_worsens=false", "all");
   BOOST_TEST(read_text(in_scratch("all.json")).find("\"outer_iterations\": 2,") != std::string::npos);

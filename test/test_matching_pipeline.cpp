@@ -575,7 +575,7 @@ std::string selection_fingerprint(const smc::Matching_settings& m)
   const smc::internal::Selection_settings s = smc::internal::Selection_settings::from(m);
   std::ostringstream o;
   o.precision(17);
-  o << int(s.mode) << ' ' << s.radius << ' ' << s.samples << ' ' << s.smoothing << ' ' << s.diagnostic_regions;
+  o << int(s.mode) << ' ' << s.radius << ' ' << s.samples << ' ' << s.smoothing << ' ' << s.diagnostic_regions << ' ' << s.confidence_threshold;
   return o.str();
 }
 /// The settings that match_shapes() itself reads (match_shapes.h, match_prepared_shapes() and
@@ -1674,6 +1674,8 @@ BOOST_AUTO_TEST_CASE(a_mirror_map_reverses_every_triangle)
       original.data(), g1, original.data(), g1, identity, identity, layout, s);
   BOOST_TEST(mirror.whole.orientation_reversal == 1.0);
   BOOST_TEST(same.whole.orientation_reversal == 0.0);
+  BOOST_TEST(mirror.whole.global_orientation_reversal == 1.0);
+  BOOST_TEST(same.whole.global_orientation_reversal == 0.0);
   for(std::size_t r = 0; r < layout.centers.size(); ++r)
   {
     BOOST_TEST(mirror.regions[r].orientation_reversal == 1.0);
@@ -1683,6 +1685,48 @@ BOOST_AUTO_TEST_CASE(a_mirror_map_reverses_every_triangle)
   BOOST_TEST(mirror.whole.inconsistent_fraction == 0.0);
   BOOST_TEST(mirror.whole.distortion < 1e-6);
   BOOST_TEST(mirror.whole.global_distortion < 1e-6);
+  // The confidence sees the mirror.
+  smc::Matching_diagnostics d;
+  d.after = {{mirror, same}};
+  const smc::Matching_confidence c = smc::internal::matching_confidence(d, 0.5);
+  BOOST_TEST(c.low);
+  BOOST_TEST(c.score == 0.0);
+  BOOST_TEST(c.direction_scores[1] == 1.0);
+}
+
+BOOST_AUTO_TEST_CASE(confidence_is_the_lowest_score_of_orientation_and_far_distances)
+{
+  // Analytic cases: a map's score is min(1 - far reversal / 0.5, 1 - global distortion / 0.5),
+  // clamped to [0, 1]; the confidence is the lower direction's, low below the threshold. The
+  // reversal of small triangles (local noise) does not count.
+  smc::Matching_diagnostics d;
+  d.after[0].whole.global_orientation_reversal = 0.1;   // 0.8
+  d.after[0].whole.global_distortion = 0.02;            // 0.96
+  d.after[0].whole.orientation_reversal = 0.45;
+  d.after[1].whole.global_orientation_reversal = 0.01;  // 0.98
+  d.after[1].whole.global_distortion = 0.225;           // 0.55
+  smc::Matching_confidence c = smc::internal::matching_confidence(d, 0.5);
+  BOOST_TEST(c.direction_scores[0] == 0.8, tt::tolerance(1e-12));
+  BOOST_TEST(c.direction_scores[1] == 0.55, tt::tolerance(1e-12));
+  BOOST_TEST(c.score == 0.55, tt::tolerance(1e-12));
+  BOOST_TEST(!c.low);
+  BOOST_TEST(c.reason == "map 2->1: global distortion 0.225");
+  BOOST_TEST(smc::internal::matching_confidence(d, 0.6).low);
+  d.after[0].whole.global_orientation_reversal = 0.9;  // a mirror map: 0, not negative
+  c = smc::internal::matching_confidence(d, 0.5);
+  BOOST_TEST(c.score == 0.0);
+  BOOST_TEST(c.low);
+  BOOST_TEST(c.reason == "map 1->2: orientation reversal 0.900");
+  d.after[0].whole.global_orientation_reversal = 0;
+  d.after[0].whole.global_distortion = 0;
+  d.after[1] = d.after[0];
+  BOOST_TEST(smc::internal::matching_confidence(d, 0.5).score == 1.0);
+  // match_shapes() on the bent pair (accurate maps) trusts its maps.
+  const Run r = run_shapes(data().bent1, data().bent2, params::matching_settings(fast_settings()));
+  BOOST_TEST(!r.result.confidence.low);
+  BOOST_TEST(r.result.confidence.score > 0.8);
+  BOOST_TEST(r.result.confidence.score ==
+             std::min(r.result.confidence.direction_scores[0], r.result.confidence.direction_scores[1]));
 }
 
 BOOST_AUTO_TEST_CASE(diagnostics_of_exact_maps_are_zero_but_for_the_descriptors)
@@ -1700,6 +1744,7 @@ BOOST_AUTO_TEST_CASE(diagnostics_of_exact_maps_are_zero_but_for_the_descriptors)
     BOOST_TEST(x.distortion < 1e-6);
     BOOST_TEST(x.descriptor_distance < 1e-3);
     BOOST_TEST(x.orientation_reversal == 0.0);
+    BOOST_TEST(x.global_orientation_reversal == 0.0);
   }
 }
 

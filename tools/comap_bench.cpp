@@ -123,6 +123,7 @@ struct Direction_result
   /// The library's ground-truth-free diagnostics of the unrefined and the final maps, and the
   /// mean ground-truth error of each of their regions (NaN: no ground-truth sample in the region).
   bool has_diagnostics = false;
+  double confidence = 1;  ///< the library's confidence score of the final map
   smc::Direction_diagnostics diagnostics_before, diagnostics_after;
   std::vector<double> region_error_before, region_error_after;
 };
@@ -148,19 +149,20 @@ std::vector<double> region_errors(const smc::Error_statistics& e, const Vertex_m
 /// more than 0.002; a diagnostic says "worse" when its value rose.
 struct Diagnostic_separation
 {
-  static constexpr std::size_t measures = 7;
+  static constexpr std::size_t measures = 8;
   static const char* name(std::size_t k)
   {
-    static const char* names[measures] = {"inconsistent_fraction", "cycle_error",          "distortion",
-                                          "global_distortion",     "descriptor_distance",  "orientation_reversal",
-                                          "energy"};
+    static const char* names[measures] = {
+        "inconsistent_fraction", "cycle_error",          "distortion",
+        "global_distortion",     "descriptor_distance",  "orientation_reversal",
+        "global_orientation_reversal", "energy"};
     return names[k];
   }
   static double value(const smc::Map_diagnostics& d, std::size_t k)
   {
     const double v[measures] = {d.inconsistent_fraction, d.cycle_error,         d.distortion,
                                 d.global_distortion,     d.descriptor_distance, d.orientation_reversal,
-                                d.energy};
+                                d.global_orientation_reversal, d.energy};
     return v[k];
   }
   std::size_t worse = 0, better = 0;
@@ -388,15 +390,15 @@ std::string diagnostics_table(const Diagnostic_separation& maps, const Diagnosti
   out << "ground-truth-free diagnostics, final against unrefined maps: the share of the maps (regions) made worse\n"
       << "by more than 0.002 whose diagnostic rose, and of those made better whose diagnostic fell\n";
   char line[200];
-  std::snprintf(line, sizeof(line), "%-22s %-25s %s\n", "", "maps", "regions");
+  std::snprintf(line, sizeof(line), "%-28s %-25s %s\n", "", "maps", "regions");
   out << line;
-  std::snprintf(line, sizeof(line), "%-22s %-12s %-12s %-12s %s\n", "",
+  std::snprintf(line, sizeof(line), "%-28s %-12s %-12s %-12s %s\n", "",
                 ("worse " + std::to_string(maps.worse)).c_str(), ("better " + std::to_string(maps.better)).c_str(),
                 ("worse " + std::to_string(regions.worse)).c_str(), ("better " + std::to_string(regions.better)).c_str());
   out << line;
   for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
   {
-    std::snprintf(line, sizeof(line), "%-22s %-12s %-12s %-12s %s\n", Diagnostic_separation::name(k),
+    std::snprintf(line, sizeof(line), "%-28s %-12s %-12s %-12s %s\n", Diagnostic_separation::name(k),
                   cell(maps.worse_flagged[k], maps.worse).c_str(), cell(maps.better_recognised[k], maps.better).c_str(),
                   cell(regions.worse_flagged[k], regions.worse).c_str(),
                   cell(regions.better_recognised[k], regions.better).c_str());
@@ -550,6 +552,7 @@ int run_bench(int argc, char** argv)
           const Bench_shape& source = d == 0 ? *A : *B;
           const std::vector<int>& regions = d == 0 ? m.diagnostics.regions_1 : m.diagnostics.regions_2;
           x.has_diagnostics = true;
+          x.confidence = m.confidence.direction_scores[std::size_t(d)];
           x.diagnostics_before = m.diagnostics.before[d];
           x.diagnostics_after = m.diagnostics.after[d];
           const std::size_t count = x.diagnostics_before.regions.size();
@@ -606,6 +609,8 @@ int run_bench(int argc, char** argv)
   std::vector<double> pair_seconds, pair_seconds_with_preprocessing;
   std::size_t failed = 0, worsened = 0, maps = 0;
   Diagnostic_separation map_separation, region_separation;
+  // The confidence against the ground truth: wrong maps (median error above 0.25) and the others.
+  std::size_t wrong_maps = 0, wrong_flagged = 0, good_maps = 0, good_flagged = 0;
   double initialization_sum = 0, data_sum = 0, trws_sum = 0, refinement_sum = 0, selection_sum = 0;
   {
     smc::Atomic_output_file csv_file(o.out + "/pairs.csv");
@@ -618,6 +623,7 @@ int run_bench(int argc, char** argv)
            "preprocessing_seconds,initialization_seconds,data_preparation_seconds,trws_seconds,refinement_seconds,"
            "selection_seconds,match_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
            "automatic_maps_kept,refined_as_automatic,given_maps_distortion,automatic_maps_distortion";
+    csv << ",confidence";
     for(const char* phase : {"unrefined", "final"})
       for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
         csv << "," << phase << "_" << Diagnostic_separation::name(k);
@@ -644,6 +650,9 @@ int run_bench(int argc, char** argv)
         refined.add(x.refined);
         ++maps;
         worsened += x.refined.errors.mean > x.unrefined.errors.mean + 0.002;
+        const bool wrong = x.refined.errors.median > 0.25, flagged = x.confidence < settings.confidence_threshold;
+        (wrong ? wrong_maps : good_maps) += 1;
+        (wrong ? wrong_flagged : good_flagged) += flagged;
         if(x.has_diagnostics)
         {
           map_separation.add(x.unrefined.errors.mean, x.refined.errors.mean, x.diagnostics_before.whole,
@@ -675,7 +684,7 @@ int run_bench(int argc, char** argv)
             << "," << shortest(r.torn_fraction) << ","
             << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << ","
             << int(r.refined_as_automatic) << "," << optional_value(r.given_maps_distortion) << ","
-            << optional_value(r.automatic_maps_distortion);
+            << optional_value(r.automatic_maps_distortion) << "," << shortest(x.confidence);
         for(const smc::Map_diagnostics* g : {&x.diagnostics_before.whole, &x.diagnostics_after.whole})
           for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
             csv << "," << (x.has_diagnostics ? shortest(Diagnostic_separation::value(*g, k)) : std::string(""));
@@ -779,6 +788,13 @@ int run_bench(int argc, char** argv)
     write_aggregate(json, "unrefined", unrefined);
     json.value("fraction_worsened_by_more_than_0.002", maps > 0 ? double(worsened) / double(maps) : 0.0);
     write_aggregate(json, "refined", refined);
+    json.begin_object("confidence")
+        .value("threshold", settings.confidence_threshold)
+        .value("wrong_maps", wrong_maps)
+        .value("wrong_maps_flagged", wrong_flagged)
+        .value("good_maps", good_maps)
+        .value("good_maps_flagged", good_flagged)
+        .end_object();
     json.begin_object("diagnostics_separation");
     map_separation.write(json, "maps");
     region_separation.write(json, "regions");
@@ -822,6 +838,8 @@ int run_bench(int argc, char** argv)
   std::cout << "wrong maps (median error above 0.25): " << initial.wrong << " initial, "
             << (automatic ? std::string() : std::to_string(unrefined.wrong) + " unrefined, ") << refined.wrong
             << " final, of " << maps << "\n"
+            << "confidence below " << shortest(settings.confidence_threshold) << ": " << wrong_flagged << " of "
+            << wrong_maps << " wrong maps, " << good_flagged << " of " << good_maps << " others\n"
             << "maps whose final error exceeds the unrefined maps' error by more than 0.002: " << worsened << " of "
             << maps << " (" << percent(maps > 0 ? double(worsened) / double(maps) : 0.0) << ")\n"
             << diagnostics_table(map_separation, region_separation)

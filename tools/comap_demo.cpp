@@ -410,6 +410,7 @@ int run_demo(int argc, char** argv)
   }
   std::cout << "\n";
   for(const std::string& d : r.decisions) std::cout << d << "\n";
+  std::cout << confidence_report(r);
   std::cout << "\ntimings:";
   for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
     if(r.stage_seconds[std::size_t(s)] > 0)

@@ -132,6 +132,7 @@ int run_match(int argc, char** argv)
   for(const std::string& d : r.decisions) std::cout << d << "\n";
   std::cout << "inconsistent vertices (T21(T12(x)) != x, both ways): " << r.inconsistent_vertices_before << " -> "
             << r.inconsistent_vertices_after << " of " << (n1 + n2) << "\n"
+            << confidence_report(r)
             << "timings: loading " << duration(load_seconds);
   for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
     if(r.stage_seconds[std::size_t(s)] > 0)

@@ -3,6 +3,7 @@
 
 #include "comap_report.h"
 
+#include <iostream>
 
 namespace comap {
 
@@ -72,6 +73,7 @@ void write_diagnostics_fields(Json_writer& json, const smc::Map_diagnostics& d)
       .value("global_distortion", d.global_distortion)
       .value("descriptor_distance", d.descriptor_distance)
       .value("orientation_reversal", d.orientation_reversal)
+      .value("global_orientation_reversal", d.global_orientation_reversal)
       .value("energy", d.energy);
 }
 
@@ -102,6 +104,16 @@ void write_diagnostics(Json_writer& json, const smc::Matching_diagnostics& diagn
 }
 
 } // namespace
+
+std::string confidence_report(const smc::Matching_result& r)
+{
+  const smc::Matching_confidence& c = r.confidence;
+  if(c.low)
+    std::cerr << "comap: warning: low confidence " << fixed(c.score, 2) << " (" << c.reason
+              << "): the maps are probably wrong as a whole (a mirror image, or parts sent to other parts); "
+                 "landmarks (--landmarks) or initial maps can guide them\n";
+  return "confidence: " + fixed(c.score, 2) + (c.low ? " (low: " : " (lowest: ") + c.reason + ")\n";
+}
 
 void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r)
 {
@@ -140,6 +152,13 @@ void write_result(Json_writer& json, const std::string& key, const smc::Matching
       .value("distortion_before", r.distortion_before)
       .value("distortion_after", r.distortion_after);
   if(r.diagnostics.computed) write_diagnostics(json, r.diagnostics);
+  json.begin_object("confidence")
+      .value("score", r.confidence.score)
+      .value("score_12", r.confidence.direction_scores[0])
+      .value("score_21", r.confidence.direction_scores[1])
+      .value("low", r.confidence.low)
+      .value("reason", r.confidence.reason)
+      .end_object();
   json.begin_object("initialization")
       .value("functional_map_seconds", r.initialization.functional_map_seconds)
       .value("zoomout_seconds", r.initialization.zoomout_seconds)

@@ -41,6 +41,10 @@ private:
 /// refinement solves) as a JSON object named `key`.
 void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r);
 
+/// The confidence line of the standard output ("confidence: 0.97 (lowest: ...)"); when the
+/// confidence is low, also writes a warning on stderr (whatever --quiet says).
+std::string confidence_report(const smc::Matching_result& r);
+
 /// Mean, median, maximum, fractions within 0.025 / 0.05 / 0.1 and, with `with_curve`, the
 /// cumulative curve.
 void write_error_statistics(Json_writer& json, const std::string& key, const smc::Error_statistics& e,

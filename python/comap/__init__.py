@@ -169,7 +169,8 @@ def match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None
         ``cycle_error_before`` / ``_after``, ``distortion_before`` / ``_after``, ``selection``,
         ``diagnostics`` (the ground-truth-free diagnostics of each direction before and after
         the refinement, over each mesh and per region, with ``regions_1`` / ``_2``: the region
-        of every vertex), ``refinement`` (its TRW-S solves), ``unrefined_map_12`` / ``_21`` (the
+        of every vertex), ``confidence`` (``score`` in [0, 1], ``low``: the maps are probably
+        wrong as a whole, ``reason``), ``refinement`` (its TRW-S solves), ``unrefined_map_12`` / ``_21`` (the
         maps that entered the refinement), ...
 
     Raises

@@ -124,6 +124,7 @@ py::dict diagnostics_dict(const smc::Map_diagnostics& m)
   d["global_distortion"] = m.global_distortion;
   d["descriptor_distance"] = m.descriptor_distance;
   d["orientation_reversal"] = m.orientation_reversal;
+  d["global_orientation_reversal"] = m.global_orientation_reversal;
   d["energy"] = m.energy;
   return d;
 }
@@ -187,6 +188,13 @@ py::dict result_dict(const smc::Matching_result& r)
   d["distortion_before"] = r.distortion_before;
   d["distortion_after"] = r.distortion_after;
   if(r.diagnostics.computed) d["diagnostics"] = diagnostics_dict(r.diagnostics);
+  py::dict confidence;
+  confidence["score"] = r.confidence.score;
+  confidence["score_12"] = r.confidence.direction_scores[0];
+  confidence["score_21"] = r.confidence.direction_scores[1];
+  confidence["low"] = r.confidence.low;
+  confidence["reason"] = r.confidence.reason;
+  d["confidence"] = confidence;
   py::dict stages;
   for(int s = 0; s <= int(smc::Matching_stage::selection); ++s)
     stages[smc::to_string(smc::Matching_stage(s))] = r.stage_seconds[std::size_t(s)];

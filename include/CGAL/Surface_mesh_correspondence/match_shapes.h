@@ -92,6 +92,9 @@ struct Matching_result
   /// (the same maps when the refinement did not run), per direction, over each mesh and per
   /// region (`diagnostic_regions`).
   Matching_diagnostics diagnostics;
+  /// How far the returned maps are trusted, from their diagnostics; `confidence.low` says they are
+  /// probably wrong as a whole (`confidence_threshold`).
+  Matching_confidence confidence;
   /// The maps that entered the refinement, as vertex indices (mesh 1 -> 2 and 2 -> 1): the
   /// automatic maps, or the given maps after their repair and comparison.
   Vertex_index_map_vector unrefined_map_12, unrefined_map_21;
@@ -320,6 +323,7 @@ void refinement_stages(const Shape_data& d1, const Shape_data& d2, const Matchin
     invoke_both<ConcurrencyTag>([&] { g1.build(d1.mesh); }, [&] { g2.build(d2.mesh); });
     result.diagnostics = matching_diagnostics<ConcurrencyTag>(d1, g1, d2, g2, x12, x21, x12, x21,
                                                               Diagnostics_settings::from(rs, selection_settings));
+    result.confidence = matching_confidence(result.diagnostics, selection_settings.confidence_threshold);
     return;
   }
   const std::vector<int> input12 = x12, input21 = x21;
@@ -360,6 +364,7 @@ void refinement_stages(const Shape_data& d1, const Shape_data& d2, const Matchin
   result.decisions.push_back("selection: " + why);
   result.diagnostics = matching_diagnostics<ConcurrencyTag>(d1, g1, d2, g2, input12, input21, x12, x21,
                                                             Diagnostics_settings::from(rs, selection_settings));
+  result.confidence = matching_confidence(result.diagnostics, selection_settings.confidence_threshold);
   result.stage_seconds[std::size_t(Matching_stage::selection)] = events.end(Matching_stage::selection);
   result.inconsistent_vertices_after = inconsistent_vertices(x12, x21);
   result.cycle_error_after = mean_cycle_error(d1, d2, x12, x21);

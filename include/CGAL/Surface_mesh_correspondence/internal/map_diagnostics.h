@@ -28,6 +28,8 @@
 #include <limits>
 #include <optional>
 #include <queue>
+#include <sstream>
+#include <string>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -66,6 +68,11 @@ struct Map_diagnostics
   /// Both meshes are taken to be oriented the same way (e.g. outwards). A region's triangles are
   /// those whose first corner is in the region.
   double orientation_reversal = 0;
+  /// The same at the scale of the far apart samples (those of `global_distortion`): the fraction
+  /// of the triangles made of a sample and its two nearest samples whose images are reversed on
+  /// the target (against its vertex normal at the image of the sample). Local noise of the map,
+  /// which reverses small triangles at random, does not reverse these; a mirror map does.
+  double global_orientation_reversal = 0;
   /// The refinement's MRF energy per vertex: mu |F_S(i) - F_T(x(i))|^2 + lambda d_S(i, y(x(i)))
   /// plus half the sum over the mesh edges (i, j) of |d_S(i, j) - d_T(x(i), x(j))|, with the mu
   /// and lambda the refinement used (so the energies of all vertices add up to the energy of the
@@ -100,7 +107,64 @@ struct Matching_diagnostics
   std::array<Direction_diagnostics, 2> before, after;
 };
 
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// How far match_shapes() trusts the maps it returns, without ground truth: maps that are wrong
+/// as a whole (a mirror image, parts sent to other parts) reverse the orientation of the surface
+/// or distort the distances between far apart points (see Map_diagnostics).
+struct Matching_confidence
+{
+  /// In [0, 1]: the lower of the two directions' scores. The score of a map is the lower of
+  /// 1 - global_orientation_reversal / `orientation_reversal_limit` and 1 - global_distortion /
+  /// `global_distortion_limit` (each clamped to [0, 1]): 1 for a map that keeps the orientation
+  /// and the far distances, 0 for a mirror map, a scrambled one, or one that changes far
+  /// distances by half the square root of the area on average.
+  double score = 1;
+  /// The score of the map 1 -> 2 and of the map 2 -> 1.
+  std::array<double, 2> direction_scores{{1, 1}};
+  /// Whether `score` is below `confidence_threshold`: the maps are probably wrong as a whole.
+  bool low = false;
+  /// The diagnostic that set the score, e.g. "map 1->2: orientation reversal 0.450" (of the
+  /// far apart samples).
+  std::string reason;
+
+  /// The distortion of far distances at which a map's score reaches 0.
+  static constexpr double global_distortion_limit = 0.5;
+  /// The orientation reversal at which a map's score reaches 0 (a scrambled map's).
+  static constexpr double orientation_reversal_limit = 0.5;
+};
+
 namespace internal {
+
+/// The confidence of the returned maps (`after`) of `d`.
+inline Matching_confidence matching_confidence(const Matching_diagnostics& d, double threshold)
+{
+  Matching_confidence c;
+  auto clamp01 = [](double x) { return std::min(1.0, std::max(0.0, x)); };
+  for(int direction = 0; direction < 2; ++direction)
+  {
+    const Map_diagnostics& m = d.after[std::size_t(direction)].whole;
+    const double orientation =
+        clamp01(1 - m.global_orientation_reversal / Matching_confidence::orientation_reversal_limit);
+    const double far = clamp01(1 - m.global_distortion / Matching_confidence::global_distortion_limit);
+    const double score = std::min(orientation, far);
+    c.direction_scores[std::size_t(direction)] = score;
+    if(direction == 0 || score < c.score)
+    {
+      c.score = score;
+      std::ostringstream why;
+      why.setf(std::ios::fixed);
+      why.precision(3);
+      why << (direction == 0 ? "map 1->2: " : "map 2->1: ");
+      if(orientation <= far)
+        why << "orientation reversal " << m.global_orientation_reversal;
+      else
+        why << "global distortion " << m.global_distortion;
+      c.reason = why.str();
+    }
+  }
+  c.low = c.score < threshold;
+  return c;
+}
 
 /// The cells of `count` farthest point samples of `m` (edge-graph distances, the first sample at
 /// vertex 0): region[v] is the index of the sample nearest to v along the edges (ties: the
@@ -168,6 +232,7 @@ struct Diagnostics_layout
   int number_of_regions = 0;  ///< 0: the whole mesh only
   std::vector<int> samples;   ///< the first `global_samples` farthest point samples
   Vertex_set_distances sample_distances;  ///< between them, over the square root of the area
+  std::vector<std::array<int, 2> > sample_neighbors;  ///< the two samples nearest to each sample
 
   template <typename ConcurrencyTag>
   Diagnostics_layout(const Indexed_mesh& m, const Fast_marching_geometry& g, int count, ConcurrencyTag)
@@ -177,6 +242,29 @@ struct Diagnostics_layout
     number_of_regions = int(centers.size());
     samples = farthest_samples(m, std::min(n, global_samples));
     sample_distances.compute<ConcurrencyTag>(g, samples, std::sqrt(m.total_area));
+    for(int a : samples)
+    {
+      std::array<int, 2> nearest{{-1, -1}};
+      double d0 = std::numeric_limits<double>::infinity(), d1 = d0;
+      for(int b : samples)
+      {
+        if(b == a) continue;
+        const double d = sample_distances.distance(a, b);
+        if(d < d0)
+        {
+          d1 = d0;
+          nearest[1] = nearest[0];
+          d0 = d;
+          nearest[0] = b;
+        }
+        else if(d < d1)
+        {
+          d1 = d;
+          nearest[1] = b;
+        }
+      }
+      sample_neighbors.push_back(nearest);
+    }
     const int stride = std::max(1, n / 1000);
     for(int v = 0; v < n; v += stride) scored.push_back(v);
     scored.insert(scored.end(), centers.begin(), centers.end());
@@ -244,6 +332,28 @@ Direction_diagnostics direction_diagnostics(const Shape_data& S, const Fast_marc
       reversed_total += area;
     }
   }
+  // Orientation at the samples' scale: each sample with its two nearest samples.
+  const Indexed_mesh::Points source_normals = vertex_normals(S.mesh);
+  std::vector<double> far_reversed(reversed_area.size(), 0.0), far_counted(reversed_area.size(), 0.0);
+  double far_reversed_total = 0, far_counted_total = 0;
+  for(std::size_t k = 0; k < layout.samples.size(); ++k)
+  {
+    const int a = layout.samples[k], b = layout.sample_neighbors[k][0], c = layout.sample_neighbors[k][1];
+    if(b < 0 || c < 0) continue;
+    const int xa = x[std::size_t(a)], xb = x[std::size_t(b)], xc = x[std::size_t(c)];
+    if(xa == xb || xb == xc || xa == xc) continue;
+    const Eigen::Vector3d ns = (S.mesh.point(b) - S.mesh.point(a)).cross(S.mesh.point(c) - S.mesh.point(a));
+    const Eigen::Vector3d nt = (T.mesh.point(xb) - T.mesh.point(xa)).cross(T.mesh.point(xc) - T.mesh.point(xa));
+    const bool reversed = (ns.dot(source_normals.row(a).transpose()) > 0) != (nt.dot(target_normals.row(xa).transpose()) > 0);
+    const std::size_t r = layout.number_of_regions > 0 ? std::size_t(layout.regions[std::size_t(a)]) : 0;
+    far_counted[r] += 1;
+    far_counted_total += 1;
+    if(reversed)
+    {
+      far_reversed[r] += 1;
+      far_reversed_total += 1;
+    }
+  }
   // Global distortion: the samples' distances against their images'.
   std::vector<int> images;
   for(int a : layout.samples) images.push_back(x[std::size_t(a)]);
@@ -303,11 +413,13 @@ Direction_diagnostics direction_diagnostics(const Shape_data& S, const Fast_marc
   for(Map_diagnostics& r : out.regions) finish(r);
   auto fraction = [](double part, double whole) { return whole > 0 ? part / whole : 0.5; };
   out.whole.orientation_reversal = fraction(reversed_total, counted_total);
+  out.whole.global_orientation_reversal = fraction(far_reversed_total, far_counted_total);
   const double pairs = double(layout.samples.size()) * double(layout.samples.size() - 1);
   out.whole.global_distortion = pairs > 0 ? global_total / pairs : 0.0;
   for(std::size_t r = 0; r < out.regions.size(); ++r)
   {
     out.regions[r].orientation_reversal = fraction(reversed_area[r], counted_area[r]);
+    out.regions[r].global_orientation_reversal = fraction(far_reversed[r], far_counted[r]);
     out.regions[r].global_distortion = global_count[r] > 0 ? global_sum[r] / global_count[r] : 0.0;
   }
   return out;

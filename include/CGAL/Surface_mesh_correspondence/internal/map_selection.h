@@ -46,8 +46,8 @@ struct Selection_result
 namespace internal {
 
 /// Settings of the selection stage (the registry's `refinement_selection`, `selection_radius`,
-/// `selection_samples`, `selection_smoothing`) and of the diagnostics that follow it
-/// (`diagnostic_regions`).
+/// `selection_samples`, `selection_smoothing`) and of the diagnostics and confidence that follow
+/// it (`diagnostic_regions`, `confidence_threshold`).
 struct Selection_settings
 {
   Refinement_selection mode = matching_defaults().refinement_selection;
@@ -55,11 +55,12 @@ struct Selection_settings
   int samples = matching_defaults().selection_samples;
   int smoothing = matching_defaults().selection_smoothing;
   int diagnostic_regions = matching_defaults().diagnostic_regions;
+  double confidence_threshold = matching_defaults().confidence_threshold;
 
   static Selection_settings from(const Matching_settings& m)
   {
     return {m.refinement_selection, m.selection_radius, m.selection_samples, m.selection_smoothing,
-            m.diagnostic_regions};
+            m.diagnostic_regions, m.confidence_threshold};
   }
 };
 

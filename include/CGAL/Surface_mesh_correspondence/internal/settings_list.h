@@ -158,6 +158,8 @@
     "rounds of neighbour averaging of the distortion scores before the maps are compared vertex by vertex")        \
   X(diagnostic_regions, int, 16, 16, range_between(0, 100000), selection,                                          \
     "regions of each mesh (cells of farthest point samples) over which the result's ground-truth-free "            \
-    "diagnostics are also reported (0: the whole meshes only)")
+    "diagnostics are also reported (0: the whole meshes only)")                                                    \
+  X(confidence_threshold, double, 0.5, 0.5, range_between(0, 1), selection,                                        \
+    "confidence below which the maps are reported as probably wrong as a whole (comap warns on stderr)")
 
 #endif // CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_SETTINGS_LIST_H
