@@ -68,10 +68,12 @@ struct Map_diagnostics
   /// Both meshes are taken to be oriented the same way (e.g. outwards). A region's triangles are
   /// those whose first corner is in the region.
   double orientation_reversal = 0;
-  /// The same at the scale of the far apart samples (those of `global_distortion`): the fraction
-  /// of the triangles made of a sample and its two nearest samples whose images are reversed on
-  /// the target (against its vertex normal at the image of the sample). Local noise of the map,
-  /// which reverses small triangles at random, does not reverse these; a mirror map does.
+  /// The same at the scale of the far apart samples (those of `global_distortion`): for each
+  /// sample a and its two nearest samples b, c, whether the turn from b to c around a (seen from
+  /// the normal at a, in the tangent plane) and the turn between their images (seen from the
+  /// target's normal at the image of a) have opposite signs; triples without a clear turn on
+  /// either side are left out. Local noise of the map, which reverses small triangles at random,
+  /// does not reverse these; a mirror map does.
   double global_orientation_reversal = 0;
   /// The refinement's MRF energy per vertex: mu |F_S(i) - F_T(x(i))|^2 + lambda d_S(i, y(x(i)))
   /// plus half the sum over the mesh edges (i, j) of |d_S(i, j) - d_T(x(i), x(j))|, with the mu
@@ -134,6 +136,19 @@ struct Matching_confidence
 };
 
 namespace internal {
+
+/// The turn from b to c around a, seen from the unit normal `n` at a: ((b - a) x (c - a)) . n
+/// over |b - a| |c - a|, the sine of the angle between the two directions in the tangent plane
+/// (shrunk when they leave it). Returns false when its magnitude is below 1/4: no clear turn.
+inline bool tangent_turn(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                         const Eigen::Vector3d& n, double& turn)
+{
+  const Eigen::Vector3d u = b - a, v = c - a;
+  const double lengths = u.norm() * v.norm();
+  if(!(lengths > 0) || !(n.squaredNorm() > 0)) return false;
+  turn = u.cross(v).dot(n) / lengths;
+  return std::abs(turn) >= 0.25;
+}
 
 /// The confidence of the returned maps (`after`) of `d`.
 inline Matching_confidence matching_confidence(const Matching_diagnostics& d, double threshold)
@@ -342,9 +357,14 @@ Direction_diagnostics direction_diagnostics(const Shape_data& S, const Fast_marc
     if(b < 0 || c < 0) continue;
     const int xa = x[std::size_t(a)], xb = x[std::size_t(b)], xc = x[std::size_t(c)];
     if(xa == xb || xb == xc || xa == xc) continue;
-    const Eigen::Vector3d ns = (S.mesh.point(b) - S.mesh.point(a)).cross(S.mesh.point(c) - S.mesh.point(a));
-    const Eigen::Vector3d nt = (T.mesh.point(xb) - T.mesh.point(xa)).cross(T.mesh.point(xc) - T.mesh.point(xa));
-    const bool reversed = (ns.dot(source_normals.row(a).transpose()) > 0) != (nt.dot(target_normals.row(xa).transpose()) > 0);
+    // The turn from b to c seen from the normal at a, on each side; triples whose turn is not
+    // clear on both (b and c nearly in line with a, or off the tangent plane, as around a limb)
+    // are left out.
+    double turn_s, turn_t;
+    if(!tangent_turn(S.mesh.point(a), S.mesh.point(b), S.mesh.point(c), source_normals.row(a).transpose(), turn_s) ||
+       !tangent_turn(T.mesh.point(xa), T.mesh.point(xb), T.mesh.point(xc), target_normals.row(xa).transpose(), turn_t))
+      continue;
+    const bool reversed = (turn_s > 0) != (turn_t > 0);
     const std::size_t r = layout.number_of_regions > 0 ? std::size_t(layout.regions[std::size_t(a)]) : 0;
     far_counted[r] += 1;
     far_counted_total += 1;
