@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <random>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -23,32 +25,46 @@ using namespace smc_test;
 
 namespace {
 
-/// A "creature": a sphere with limbs, head and tail (Gaussian radial bumps in given directions).
-/// With `mirror_symmetric`, the only symmetry is the mirror x -> -x, an intrinsic symmetry for
-/// which the mirror map is as good as the true one for every intrinsic descriptor; otherwise the
-/// left limbs are shorter and nothing is symmetric.
+/// The limbs of a "creature" (see creature()).
 struct Limb { double x, y, z, height, width; };
+/// The radius of a creature with `limbs` in the direction of p (Gaussian radial bumps on the unit
+/// sphere).
+double creature_radius(const std::vector<Limb>& limbs, const Point& p)
+{
+  const double n = std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z());
+  double r = 1.0;
+  for(const Limb& l : limbs)
+  {
+    const double ln = std::sqrt(l.x * l.x + l.y * l.y + l.z * l.z);
+    const double c = (p.x() * l.x + p.y() * l.y + p.z() * l.z) / (n * ln);
+    r += l.height * std::exp(-(1 - c) / l.width);
+  }
+  return r;
+}
+/// The limbs of a creature: legs, arms, head and tail of the given heights (right leg, left leg,
+/// right arm, left arm, head, tail).
+std::vector<Limb> creature_limbs(double right_leg, double left_leg, double right_arm, double left_arm, double head,
+                                 double tail)
+{
+  return {{0.55, -0.8, 0.1, right_leg, 0.06}, {-0.55, -0.8, 0.1, left_leg, 0.06}, {0.85, 0.35, 0.2, right_arm, 0.05},
+          {-0.85, 0.35, 0.2, left_arm, 0.05}, {0.0, 0.95, 0.2, head, 0.08},        {0.0, -0.3, -0.95, tail, 0.04}};
+}
+/// The point of the creature with `limbs` in the direction of p.
+Point on_creature(const std::vector<Limb>& limbs, const Point& p)
+{
+  const double n = std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z());
+  const double r = creature_radius(limbs, p);
+  return Point(r * p.x() / n, r * p.y() / n, r * p.z() / n);
+}
+/// A "creature": a sphere with limbs, head and tail (Gaussian radial bumps in given directions,
+/// creature_limbs()). With `mirror_symmetric`, the only symmetry is the mirror x -> -x, an
+/// intrinsic symmetry for which the mirror map is as good as the true one for every intrinsic
+/// descriptor; otherwise the left limbs are shorter and nothing is symmetric.
 Mesh creature(int levels, bool mirror_symmetric)
 {
-  std::vector<Limb> limbs;
   const double arm = mirror_symmetric ? 0.6 : 0.5, leg = mirror_symmetric ? 0.9 : 0.75;
-  limbs.push_back({0.55, -0.8, 0.1, 0.9, 0.06});   // right leg
-  limbs.push_back({-0.55, -0.8, 0.1, leg, 0.06});  // left leg
-  limbs.push_back({0.85, 0.35, 0.2, 0.6, 0.05});   // right arm
-  limbs.push_back({-0.85, 0.35, 0.2, arm, 0.05});  // left arm
-  limbs.push_back({0.0, 0.95, 0.2, 0.45, 0.08});   // head
-  limbs.push_back({0.0, -0.3, -0.95, 0.35, 0.04}); // tail
-  return transformed(icosphere(levels), [limbs](const Point& p) {
-    const double n = std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z());
-    double r = 1.0;
-    for(const Limb& l : limbs)
-    {
-      const double ln = std::sqrt(l.x * l.x + l.y * l.y + l.z * l.z);
-      const double c = (p.x() * l.x + p.y() * l.y + p.z() * l.z) / (n * ln);
-      r += l.height * std::exp(-(1 - c) / l.width);
-    }
-    return Point(r * p.x() / n, r * p.y() / n, r * p.z() / n);
-  });
+  const std::vector<Limb> limbs = creature_limbs(0.9, leg, 0.6, arm, 0.45, 0.35);
+  return transformed(icosphere(levels), [limbs](const Point& p) { return on_creature(limbs, p); });
 }
 /// Raises the right arm (x > 0.5) by rotating it about the z axis at the shoulder, with a smooth
 /// weight: near-isometric except around the joint.
@@ -86,7 +102,10 @@ struct Pair_fixture
 {
   Shape_pair pair;
   smc::Map_evaluator<> on1, on2;
-  explicit Pair_fixture(const Mesh& m) : pair(deformed_pair(m, pose, true)), on1(pair.m1), on2(pair.m2) {}
+  explicit Pair_fixture(const Mesh& m, const std::function<Point(const Point&)>& deform = pose)
+      : pair(deformed_pair(m, deform, true)), on1(pair.m1), on2(pair.m2)
+  {
+  }
   double error_12(const std::vector<std::size_t>& m12, const std::vector<std::size_t>& gt) const
   {
     return on2.geodesic_errors(m12, all_vertices(m12.size()), gt).mean;
@@ -1046,6 +1065,140 @@ BOOST_AUTO_TEST_CASE(units_do_not_matter)
   BOOST_TEST(f.error_12(b12, f.pair.gt_12) < 0.015);
 }
 
+BOOST_AUTO_TEST_CASE(extremities_are_the_tips_of_the_limbs)
+{
+  namespace smci = smc::internal;
+  const std::vector<Limb> limbs = creature_limbs(0.9, 0.75, 0.6, 0.5, 0.45, 0.35);
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(creature(3, false));
+  const smci::Fast_marching_geometry g(m);
+  const smci::Shape_extremities e = smci::shape_extremities(m, g, smci::farthest_samples(m, 32), 0.15, 8);
+  // Reference: the tip of each limb, the vertex farthest out along its direction.
+  const double scale = std::sqrt(m.total_area);
+  BOOST_TEST_REQUIRE(e.vertices.size() == limbs.size());
+  std::vector<int> matched(limbs.size(), 0);
+  for(int v : e.vertices)
+  {
+    std::size_t nearest = 0;
+    double nearest_distance = 1e300;
+    for(std::size_t l = 0; l < limbs.size(); ++l)
+    {
+      const Eigen::Vector3d axis = Eigen::Vector3d(limbs[l].x, limbs[l].y, limbs[l].z).normalized();
+      int tip = 0;
+      for(int u = 1; u < m.number_of_vertices(); ++u)
+        if(m.point(u).dot(axis) > m.point(tip).dot(axis)) tip = u;
+      const double d = (m.point(v) - m.point(tip)).norm() / scale;
+      if(d < nearest_distance)
+      {
+        nearest_distance = d;
+        nearest = l;
+      }
+    }
+    BOOST_TEST_MESSAGE("extremity " << v << ": limb " << nearest << ", " << nearest_distance << " from its tip");
+    BOOST_TEST(nearest_distance < 0.03);
+    ++matched[nearest];
+  }
+  for(int count : matched) BOOST_TEST(count == 1);
+  // Their distances are fast marching's, symmetric up to its discretisation, and at least the
+  // radius apart (relative to the square root of the area).
+  BOOST_TEST((e.distances - e.distances.transpose()).cwiseAbs().maxCoeff() < 0.01);
+  for(Eigen::Index i = 0; i < e.distances.rows(); ++i)
+    for(Eigen::Index j = 0; j < e.distances.cols(); ++j)
+      BOOST_TEST(e.distances(i, j) >= (i == j ? 0.0 : 0.15));
+}
+
+BOOST_AUTO_TEST_CASE(extremity_assignments_keep_the_proportions)
+{
+  namespace smci = smc::internal;
+  // Seven points in the unit cube; the extremities of one shape are five of them, of the other all
+  // seven at another scale: the true assignment preserves every proportion (score 0).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Eigen::Vector3d> points(7);
+  for(Eigen::Vector3d& p : points) p = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  const std::vector<int> subset = {4, 0, 6, 2, 5};
+  Eigen::MatrixXd all(7, 7), part(5, 5);
+  for(int i = 0; i < 7; ++i)
+    for(int j = 0; j < 7; ++j) all(i, j) = 2.5 * (points[std::size_t(i)] - points[std::size_t(j)]).norm();
+  for(int i = 0; i < 5; ++i)
+    for(int j = 0; j < 5; ++j) part(i, j) = 0.6 * (points[std::size_t(subset[std::size_t(i)])] - points[std::size_t(subset[std::size_t(j)])]).norm();
+  // Reference ranking by brute force over the 7!/2! ordered choices, with its own score.
+  std::vector<double> reference;
+  std::vector<int> order = {0, 1, 2, 3, 4, 5, 6};
+  do
+  {
+    if(!std::is_sorted(order.begin() + 5, order.end())) continue;  // each 5-prefix once
+    double s1 = 0, s2 = 0;
+    for(int i = 0; i < 5; ++i)
+      for(int j = i + 1; j < 5; ++j)
+      {
+        s1 += part(i, j);
+        s2 += all(order[std::size_t(i)], order[std::size_t(j)]);
+      }
+    double total = 0;
+    for(int i = 0; i < 5; ++i)
+      for(int j = i + 1; j < 5; ++j)
+        total += std::abs(std::log((part(i, j) / s1) / (all(order[std::size_t(i)], order[std::size_t(j)]) / s2)));
+    reference.push_back(total / 10.0);
+  } while(std::next_permutation(order.begin(), order.end()));
+  BOOST_TEST_REQUIRE(reference.size() == 2520u);
+  std::sort(reference.begin(), reference.end());
+  for(bool forward : {true, false})
+  {
+    const std::vector<smci::Extremity_assignment> a =
+        forward ? smci::extremity_assignments(part, all, 12) : smci::extremity_assignments(all, part, 12);
+    BOOST_TEST_REQUIRE(a.size() == 12u);
+    BOOST_TEST(a[0].score < 1e-12);
+    BOOST_TEST_REQUIRE(a[0].pairs.size() == 5u);
+    for(int i = 0; i < 5; ++i)
+    {
+      const std::pair<int, int> expected = forward ? std::make_pair(i, subset[std::size_t(i)])
+                                                   : std::make_pair(subset[std::size_t(i)], i);
+      BOOST_TEST((a[0].pairs[std::size_t(i)] == expected));
+    }
+    for(std::size_t k = 0; k < a.size(); ++k) BOOST_TEST(std::abs(a[k].score - reference[k]) < 1e-12);
+  }
+  // Fewer than three extremities on a side: no hypothesis.
+  BOOST_TEST(smci::extremity_assignments(part.topLeftCorner(2, 2), all, 4).empty());
+}
+
+BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
+{
+  // A creature and an "ape" whose arms are as long as its legs, with a smaller head and tail: far
+  // from isometric, and every descriptor fit swaps limbs (mean errors about 0.2), but the tips and
+  // the proportions of their distances tell the limbs apart.
+  const std::vector<Limb> ape = creature_limbs(0.9, 0.75, 0.9, 0.75, 0.3, 0.2);
+  const Pair_fixture f(creature(3, false), [ape](const Point& p) { return on_creature(ape, p); });
+  std::vector<std::size_t> a12, a21, h12, h21;
+  const smc::Automatic_initialization_result plain =
+      smc::automatic_initial_maps(f.pair.m1, f.pair.m2, a12, a21, params::extremity_hypotheses(0));
+  // The pair distorts the sample distances less than the default threshold: lowered to 0.
+  const smc::Automatic_initialization_result r = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, h12, h21, params::extremity_hypothesis_threshold(0.0));
+  const double p12 = f.error_12(a12, f.pair.gt_12), p21 = f.error_21(a21, f.pair.gt_21);
+  const double e12 = f.error_12(h12, f.pair.gt_12), e21 = f.error_21(h21, f.pair.gt_21);
+  BOOST_TEST_MESSAGE("another species: errors without the hypotheses " << p12 << " " << p21 << ", with them "
+                     << e12 << " " << e21 << " (distortion " << r.sample_distortion_before << " -> "
+                     << r.sample_distortion << ", hypothesis " << r.extremity_hypothesis << ")");
+  BOOST_TEST(plain.extremity_hypotheses == 0);
+  BOOST_TEST(r.extremities_1 == 6);
+  BOOST_TEST(r.extremities_2 == 6);
+  BOOST_TEST(r.extremity_hypotheses == smc::internal::matching_defaults().extremity_hypotheses);
+  BOOST_TEST(r.extremity_hypothesis >= 1);
+  BOOST_TEST(r.sample_distortion < r.sample_distortion_before);
+  BOOST_TEST(r.passes > plain.passes);
+  BOOST_TEST(r.extremity_seconds > 0);
+  BOOST_TEST(e12 < 0.02);
+  BOOST_TEST(e21 < 0.02);
+  // Above the threshold nothing runs, and the distortion is still measured.
+  std::vector<std::size_t> b12, b21;
+  const smc::Automatic_initialization_result above = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, b12, b21, params::extremity_hypothesis_threshold(1e6));
+  BOOST_TEST(above.extremity_hypotheses == 0);
+  BOOST_TEST(above.extremities_1 == 0);
+  BOOST_TEST(above.sample_distortion > 0);
+  BOOST_TEST(fraction_equal(b12, a12) == 1.0);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_is_named)
 {
   const Pair_fixture& f = asymmetric();
@@ -1068,6 +1221,8 @@ BOOST_AUTO_TEST_CASE(bad_input_is_named)
                     smc::Invalid_parameter_error);
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
                                                 params::initialization_fits(smc::Fit_list{{50, 0.03, 0.3}}, params::zoomout_final_size(40))),
+                    smc::Invalid_parameter_error);
+  BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_threshold(-1.0)),
                     smc::Invalid_parameter_error);
   // Landmarks out of range.
   const std::vector<std::pair<std::size_t, std::size_t> > bad = {{0, num_vertices(f.pair.m2)}};

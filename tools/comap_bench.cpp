@@ -206,6 +206,7 @@ struct Pair_result
   int outer_iterations = 0, kept_iterations = 0;
   int repair_passes = 0;                          ///< tear repair passes kept
   double torn_fraction_before = 0, torn_fraction = 0;
+  int extremity_hypotheses = 0, extremity_hypothesis = 0;  ///< tried and kept (0: none)
   int automatic_maps_kept = -1;                   ///< given maps: 1 when the automatic maps replaced them
   double given_maps_distortion = -1, automatic_maps_distortion = -1;  ///< given maps (-1: not computed)
   bool refined_as_automatic = false;              ///< the refinement used the defaults for automatic maps
@@ -221,6 +222,8 @@ struct Pair_result
     repair_passes = m.repair_passes;
     torn_fraction_before = m.initialization.torn_fraction_before;
     torn_fraction = m.initialization.torn_fraction;
+    extremity_hypotheses = m.initialization.extremity_hypotheses;
+    extremity_hypothesis = m.initialization.extremity_hypothesis;
     automatic_maps_kept = m.compared ? int(m.automatic_maps_kept) : -1;
     given_maps_distortion = m.compared ? m.given_maps_distortion : -1;
     automatic_maps_distortion = m.automatic_maps_computed ? m.automatic_maps_distortion : -1;
@@ -623,7 +626,7 @@ int run_bench(int argc, char** argv)
            "preprocessing_seconds,initialization_seconds,data_preparation_seconds,trws_seconds,refinement_seconds,"
            "selection_seconds,match_seconds,evaluation_seconds,repair_passes,torn_fraction_before,torn_fraction,"
            "automatic_maps_kept,refined_as_automatic,given_maps_distortion,automatic_maps_distortion";
-    csv << ",confidence";
+    csv << ",confidence,extremity_hypotheses,extremity_hypothesis";
     for(const char* phase : {"unrefined", "final"})
       for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
         csv << "," << phase << "_" << Diagnostic_separation::name(k);
@@ -684,7 +687,8 @@ int run_bench(int argc, char** argv)
             << "," << shortest(r.torn_fraction) << ","
             << (r.automatic_maps_kept < 0 ? std::string("") : std::to_string(r.automatic_maps_kept)) << ","
             << int(r.refined_as_automatic) << "," << optional_value(r.given_maps_distortion) << ","
-            << optional_value(r.automatic_maps_distortion) << "," << shortest(x.confidence);
+            << optional_value(r.automatic_maps_distortion) << "," << shortest(x.confidence) << ","
+            << r.extremity_hypotheses << "," << r.extremity_hypothesis;
         for(const smc::Map_diagnostics* g : {&x.diagnostics_before.whole, &x.diagnostics_after.whole})
           for(std::size_t k = 0; k < Diagnostic_separation::measures; ++k)
             csv << "," << (x.has_diagnostics ? shortest(Diagnostic_separation::value(*g, k)) : std::string(""));

@@ -166,6 +166,12 @@ void write_result(Json_writer& json, const std::string& key, const smc::Matching
       .value("orientation_agreement", r.initialization.orientation_agreement)
       .value("torn_fraction_before", r.initialization.torn_fraction_before)
       .value("torn_fraction", r.initialization.torn_fraction)
+      .value("sample_distortion", r.initialization.sample_distortion)
+      .value("extremities_1", r.initialization.extremities_1)
+      .value("extremities_2", r.initialization.extremities_2)
+      .value("extremity_hypotheses", r.initialization.extremity_hypotheses)
+      .value("extremity_hypothesis", r.initialization.extremity_hypothesis)
+      .value("extremity_seconds", r.initialization.extremity_seconds)
       .value("passes", r.initialization.passes)
       .end_object();
   json.begin_object("stage_seconds");

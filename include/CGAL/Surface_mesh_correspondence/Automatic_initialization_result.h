@@ -55,6 +55,13 @@ struct Automatic_initialization_result
   /// and of the kept pass's maps (before their growth to the final basis size).
   int distortion_repair_passes = 0;
   double sample_distortion_before = 0, sample_distortion = 0;
+  /// Extremity hypotheses (see automatic_initial_maps()): the extremities found on each mesh, the
+  /// hypotheses tried (0: the maps distorted the sample distances too little for them to run) and
+  /// the one whose maps were kept (1 for the first; 0: none, the descriptor-based maps were kept),
+  /// and the seconds they took.
+  int extremities_1 = 0, extremities_2 = 0;
+  int extremity_hypotheses = 0, extremity_hypothesis = 0;
+  double extremity_seconds = 0;
   /// Comparison with the automatic maps (repair_torn_maps() with `compare_with_automatic_maps`):
   /// whether it ran, whether the automatic maps replaced the (repaired) given maps, and the
   /// geodesic distortions of the sample maps (mean of both directions) of both pairs of maps, at

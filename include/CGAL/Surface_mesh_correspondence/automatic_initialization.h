@@ -12,6 +12,7 @@
 #include <CGAL/Surface_mesh_correspondence/Correspondence_shape.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/internal/extremity_hypotheses.h>
 #include <CGAL/Surface_mesh_correspondence/internal/functional_map_fitting.h>
 #include <CGAL/Surface_mesh_correspondence/internal/given_maps_comparison.h>
 #include <CGAL/Surface_mesh_correspondence/internal/initialization_settings.h>
@@ -119,8 +120,11 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// most 5% more distorted (`tear_repair_distortion_tolerance`). Optionally
 /// (`number_of_distortion_repair_passes`) the distortion repair: maps that distort the geodesic
 /// distances of farthest-point samples by more than 0.035 on average are computed again with
-/// landmarks in their isometric core, and kept when they distort at least 20% less. Finally the
-/// kept maps grow by the same coupled ZoomOut to `zoomout_final_size` (grow_initial_maps()).
+/// landmarks in their isometric core, and kept when they distort at least 20% less. On maps that
+/// distort those distances by more than 0.1 (`extremity_hypothesis_threshold`: pairs far from
+/// isometric, where every descriptor fit can be wrong as a whole) the extremity hypotheses: passes
+/// from assignments of the extremities of both shapes that keep the proportions of their geodesic
+/// distances, the least distorted maps kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size` (grow_initial_maps()).
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
 /// orientations (signed volumes of opposite signs) the orientation term is reversed
@@ -175,6 +179,12 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///   - `number_of_distortion_repair_passes`: distortion repair passes at most (maps continuous but
 ///     wrong on a large part, e.g. half-body flips; see repair_distorted_maps()); type `int`;
 ///     default 0 (each pass costs about as much as the first one).
+///   - `extremity_hypotheses`, `extremity_hypothesis_threshold`: on maps whose sample distortion is
+///     above the threshold (pairs far from isometric, e.g. a gorilla and a man), this many passes
+///     from the best assignments of the shapes' extremities (tips of limbs, head, tail) as
+///     landmarks, each with its tear repair, the least distorted maps kept (see
+///     try_extremity_hypotheses()); types `int` and `double`; defaults 1 and 0.1 (each hypothesis
+///     costs about one initialisation).
 ///   - `compare_with_automatic_maps`: repair_torn_maps() only (ignored here): whether the repaired
 ///     given maps compete with the automatic maps; type `bool`; default true.
 ///   - `automatic_maps_comparison_threshold`: repair_torn_maps() with the comparison and

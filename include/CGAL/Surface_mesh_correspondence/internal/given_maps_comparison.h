@@ -11,6 +11,7 @@
 #include <CGAL/Surface_mesh_correspondence/Automatic_initialization_result.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/candidate_maps.h>
+#include <CGAL/Surface_mesh_correspondence/internal/extremity_hypotheses.h>
 #include <CGAL/Surface_mesh_correspondence/internal/initialization_distortion.h>
 #include <CGAL/Surface_mesh_correspondence/internal/initialization_settings.h>
 #include <CGAL/Surface_mesh_correspondence/internal/tear_repair.h>
@@ -68,9 +69,14 @@ Automatic_initialization_result compare_given_with_automatic_maps(const Initiali
     grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, r);
     return r;
   }
+  // Without the extremity hypotheses: they run on automatic maps more distorted than
+  // extremity_hypothesis_threshold, which the comparison does not trust anyway
+  // (automatic_maps_maximum_distortion), and would cost several passes for nothing.
+  Initialization_settings automatic_settings = s;
+  automatic_settings.extremity_hypotheses = 0;
   std::vector<std::size_t> a12, a21;
   Automatic_initialization_result automatic =
-      automatic_initial_maps<ConcurrencyTag>(shape1, shape2, s, a12, a21, &cache, false);
+      automatic_initial_maps<ConcurrencyTag>(shape1, shape2, automatic_settings, a12, a21, &cache, false);
   const double automatic_distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, a12, a21);
   const bool trusted = automatic_distortion <= s.automatic_maps_maximum_distortion;
   const bool keep_automatic = trusted && automatic_distortion < given_distortion;

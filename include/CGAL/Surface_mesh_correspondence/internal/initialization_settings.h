@@ -130,6 +130,16 @@ struct Initialization_settings
   /// shapes whose poses stretch the surface the ground truth is not the most isometric map, and
   /// small gains in isometry are as often losses in accuracy.
   double distortion_repair_gain = 0.2;
+  // Extremity hypotheses.
+  /// Passes from assignments of the extremities of both shapes, run when the sample distortion of
+  /// the maps is above extremity_hypothesis_threshold (0: none; see try_extremity_hypotheses()).
+  int extremity_hypotheses = matching_defaults().extremity_hypotheses;
+  double extremity_hypothesis_threshold = matching_defaults().extremity_hypothesis_threshold;
+  /// The extremities: local maxima of the mean geodesic distance to this many distortion samples
+  /// within this radius (relative to the square root of the area), at most this many per shape.
+  int extremity_sources = 32;
+  double extremity_radius = 0.15;
+  int maximum_extremities = 7;
   /// Passes in all (the first one, tear repair and distortion repair): the distortion repair runs
   /// only while this allows.
   int maximum_passes = 3;
@@ -187,6 +197,8 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.number_of_operator_descriptors = m.number_of_operator_descriptors;
   s.tear_repair_passes = m.number_of_repair_passes;
   s.distortion_repair_passes = m.number_of_distortion_repair_passes;
+  s.extremity_hypotheses = m.extremity_hypotheses;
+  s.extremity_hypothesis_threshold = m.extremity_hypothesis_threshold;
   s.tear_threshold = m.tear_threshold;
   s.tear_min_fraction = m.tear_area_fraction;
   s.tear_repair_distortion_tolerance = m.tear_repair_distortion_tolerance;
@@ -273,6 +285,12 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.landmark_orientation < -1 || s.landmark_orientation > 1) fail("landmark_orientation must be -1, 0 or 1");
   if(s.tear_repair_passes < 0) fail("tear_repair_passes must be non-negative");
   if(s.distortion_repair_passes < 0) fail("distortion_repair_passes must be non-negative");
+  if(s.extremity_hypotheses < 0) fail("extremity_hypotheses must be non-negative");
+  if(!(s.extremity_hypothesis_threshold >= 0) || !std::isfinite(s.extremity_hypothesis_threshold))
+    fail("extremity_hypothesis_threshold = " + std::to_string(s.extremity_hypothesis_threshold) +
+         " must be finite and non-negative");
+  if(s.extremity_sources < 1 || s.maximum_extremities < 0 || !(s.extremity_radius > 0))
+    fail("extremity_sources and extremity_radius must be positive, maximum_extremities non-negative");
   if(!(s.automatic_maps_comparison_threshold >= 0) || !std::isfinite(s.automatic_maps_comparison_threshold))
     fail("automatic_maps_comparison_threshold = " + std::to_string(s.automatic_maps_comparison_threshold) +
          " must be finite and non-negative");

@@ -95,6 +95,11 @@
   X(number_of_distortion_repair_passes, int, 0, 0, range_between(0, 100), initialization,                          \
     "distortion repair passes at most: maps recomputed with landmarks from their isometric core, kept when they "  \
     "distort the sample distances less (0: none)")                                                                 \
+  X(extremity_hypotheses, int, 1, 1, range_between(0, 100), initialization,                                       \
+    "maps that distort the sample distances more than extremity_hypothesis_threshold: passes run from this many "  \
+    "assignments of the shapes' extremities as landmarks, kept when less distorted (0: none)")                    \
+  X(extremity_hypothesis_threshold, double, 0.1, 0.1, range_at_least(0), initialization,                          \
+    "sample distortion above which the extremity hypotheses run (pairs far from isometric)")                      \
   X(tear_threshold, double, 0.06, 0.06, range_above(0), initialization,                                            \
     "a source edge is torn when its images are this far apart (relative to the square root of the target's "      \
     "area)")                                                                                                       \

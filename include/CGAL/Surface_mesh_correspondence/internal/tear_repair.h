@@ -207,33 +207,6 @@ Automatic_initialization_result repair_distorted_maps(const Initialization_shape
   return result;
 }
 
-/// The core of automatic_initial_maps() on precomputed shapes (see single_pass_initial_maps()):
-/// one pass, then the tear repair (repair_torn_maps()) and the distortion repair
-/// (repair_distorted_maps()), then the growth to the final size (grow_initial_maps()) unless
-/// `grow` is false (the maps then stay at the pass size, for a comparison before the growth).
-template <typename ConcurrencyTag>
-Automatic_initialization_result automatic_initial_maps(const Initialization_shape& shape1,
-                                                       const Initialization_shape& shape2,
-                                                       const Initialization_settings& s,
-                                                       std::vector<std::size_t>& map_12,
-                                                       std::vector<std::size_t>& map_21,
-                                                       Initialization_pass_cache* pass_cache = nullptr,
-                                                       bool grow = true)
-{
-  const auto start = std::chrono::steady_clock::now();
-  Initialization_pass_cache own_cache;
-  Initialization_pass_cache& cache = pass_cache ? *pass_cache : own_cache;
-  const Automatic_initialization_result first =
-      single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, &cache);
-  Automatic_initialization_result result =
-      repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first, &cache);
-  if(s.distortion_repair_passes > 0)
-    result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
-  if(grow) grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
-  result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
-}
-
 } // namespace internal
 } // namespace Surface_mesh_correspondence
 } // namespace CGAL

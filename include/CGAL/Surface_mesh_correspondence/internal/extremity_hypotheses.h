@@ -1,0 +1,324 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Hypotheses for pairs far from isometric: the extremities of both shapes (the tips of limbs,
+// head, tail), their assignments that best preserve the proportions of their geodesic distances,
+// and a pass of the initialisation from each assignment as landmarks, kept when its maps distort
+// the sample distances less than the descriptor-based maps.
+
+#ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
+#define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
+
+#include <CGAL/Surface_mesh_correspondence/Automatic_initialization_result.h>
+#include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/internal/candidate_maps.h>
+#include <CGAL/Surface_mesh_correspondence/internal/fast_marching.h>
+#include <CGAL/Surface_mesh_correspondence/internal/initialization_distortion.h>
+#include <CGAL/Surface_mesh_correspondence/internal/initialization_settings.h>
+#include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
+#include <CGAL/Surface_mesh_correspondence/internal/tear_repair.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <iostream>
+#include <limits>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_correspondence {
+namespace internal {
+
+/// The extremities of a shape and the geodesic distances between them (divided by the square
+/// root of the area).
+struct Shape_extremities
+{
+  std::vector<int> vertices;
+  Eigen::MatrixXd distances;
+};
+
+/// The mean geodesic distance from every vertex to `sources` (fast marching), divided by
+/// `scale`: the average geodesic distance, largest at the tips of a shape.
+inline std::vector<double> mean_geodesic_distances(const Fast_marching_geometry& g, const std::vector<int>& sources,
+                                                   double scale)
+{
+  const int n = g.number_of_vertices();
+  std::vector<double> mean(std::size_t(n), 0.0);
+  Fast_marching_workspace w(g);
+  for(int s : sources)
+  {
+    w.run(s);
+    for(int v = 0; v < n; ++v) mean[std::size_t(v)] += w.distance(v);
+  }
+  for(double& x : mean) x /= double(sources.size()) * scale;
+  return mean;
+}
+
+/// The extremities of mesh `m`: the vertices whose mean geodesic distance to `sources` is the
+/// largest within geodesic distance `radius` (relative to the square root of the area), by
+/// decreasing mean distance, at most `max_count`. Each is at least `radius` from the others. On a
+/// humanoid they are the hands, the feet and the head; they do not depend on the pose, and their
+/// geodesic distances keep their proportions on shapes that are not isometric.
+inline Shape_extremities shape_extremities(const Indexed_mesh& m, const Fast_marching_geometry& g,
+                                           const std::vector<int>& sources, double radius, int max_count)
+{
+  const int n = m.number_of_vertices();
+  const double scale = std::sqrt(m.total_area);
+  const std::vector<double> mean = mean_geodesic_distances(g, sources, scale);
+  // Local maxima among the neighbours, by decreasing mean distance.
+  std::vector<int> order;
+  for(int v = 0; v < n; ++v)
+  {
+    bool maximum = std::isfinite(mean[std::size_t(v)]);
+    for(const int* w = m.neighbors_begin(v); maximum && w != m.neighbors_end(v); ++w)
+      maximum = mean[std::size_t(*w)] <= mean[std::size_t(v)];
+    if(maximum) order.push_back(v);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return mean[std::size_t(a)] > mean[std::size_t(b)]; });
+  Shape_extremities out;
+  std::vector<std::vector<double> > rows;  // distances from each extremity
+  Fast_marching_workspace w(g);
+  for(int v : order)
+  {
+    if(int(out.vertices.size()) >= max_count) break;
+    bool far = true;
+    for(const std::vector<double>& row : rows) far = far && row[std::size_t(v)] >= radius * scale;
+    if(!far) continue;
+    // A maximum within the radius: no vertex of the geodesic ball is farther from the sources.
+    w.run(v, radius * scale);
+    bool maximum = true;
+    for(int u : w.accepted()) maximum = maximum && mean[std::size_t(u)] <= mean[std::size_t(v)];
+    if(!maximum) continue;
+    out.vertices.push_back(v);
+    w.run(v);
+    rows.emplace_back();
+    w.copy_distances(rows.back());
+  }
+  const Eigen::Index k = Eigen::Index(out.vertices.size());
+  out.distances.resize(k, k);
+  for(Eigen::Index i = 0; i < k; ++i)
+    for(Eigen::Index j = 0; j < k; ++j)
+      out.distances(i, j) = rows[std::size_t(i)][std::size_t(out.vertices[std::size_t(j)])] / scale;
+  return out;
+}
+
+/// An assignment of extremities (pairs of indices into the extremities of mesh 1 and mesh 2) and
+/// its score.
+struct Extremity_assignment
+{
+  std::vector<std::pair<int, int> > pairs;
+  double score = 0;
+};
+
+/// The proportion distortion of matching extremities `a` of one shape to `b` of the other (same
+/// length, indices into the distance matrices): the mean over the pairs of matched extremities of
+/// |log(d1 / mean d1) - log(d2 / mean d2)|, the distances divided by their mean over the matched
+/// pairs. Invariant to the scale of each shape, so that a gorilla's long arms and short legs can
+/// match a man's, whose absolute distances differ by a third.
+inline double proportion_distortion(const Eigen::MatrixXd& D1, const Eigen::MatrixXd& D2, const std::vector<int>& a,
+                                    const std::vector<int>& b)
+{
+  const std::size_t k = a.size();
+  double mean1 = 0, mean2 = 0;
+  for(std::size_t i = 0; i < k; ++i)
+    for(std::size_t j = i + 1; j < k; ++j)
+    {
+      mean1 += D1(a[i], a[j]);
+      mean2 += D2(b[i], b[j]);
+    }
+  if(!(mean1 > 0) || !(mean2 > 0)) return std::numeric_limits<double>::infinity();
+  double total = 0;
+  std::size_t count = 0;
+  for(std::size_t i = 0; i < k; ++i)
+    for(std::size_t j = i + 1; j < k; ++j, ++count)
+    {
+      const double x = D1(a[i], a[j]) / mean1, y = D2(b[i], b[j]) / mean2;
+      total += (x > 0 && y > 0) ? std::abs(std::log(x / y)) : std::numeric_limits<double>::infinity();
+    }
+  return total / double(count);
+}
+
+/// The `count` assignments of lowest proportion_distortion() among the injective assignments of
+/// every extremity of the shape with fewer extremities to those of the other (all of them are
+/// enumerated: at most 8!/2 for 8 extremities), by increasing score (ties in enumeration order).
+/// Empty when either shape has fewer than three extremities.
+inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::MatrixXd& D1, const Eigen::MatrixXd& D2,
+                                                               std::size_t count)
+{
+  std::vector<Extremity_assignment> out;
+  const int n1 = int(D1.rows()), n2 = int(D2.rows());
+  if(std::min(n1, n2) < 3 || count == 0) return out;
+  const bool forward = n1 <= n2;  // every extremity of mesh 1 is matched
+  const int k = std::min(n1, n2), l = std::max(n1, n2);
+  std::vector<int> fixed(static_cast<std::size_t>(k)), chosen;
+  std::iota(fixed.begin(), fixed.end(), 0);
+  std::vector<char> used(std::size_t(l), 0);
+  std::vector<Extremity_assignment> all;
+  // Depth-first enumeration of the k-permutations of the l extremities.
+  auto enumerate = [&](auto&& self) -> void {
+    if(int(chosen.size()) == k)
+    {
+      Extremity_assignment a;
+      a.score = forward ? proportion_distortion(D1, D2, fixed, chosen) : proportion_distortion(D1, D2, chosen, fixed);
+      for(int i = 0; i < k; ++i)
+        a.pairs.emplace_back(forward ? i : chosen[std::size_t(i)], forward ? chosen[std::size_t(i)] : i);
+      all.push_back(std::move(a));
+      return;
+    }
+    for(int j = 0; j < l; ++j)
+      if(!used[std::size_t(j)])
+      {
+        used[std::size_t(j)] = 1;
+        chosen.push_back(j);
+        self(self);
+        chosen.pop_back();
+        used[std::size_t(j)] = 0;
+      }
+  };
+  enumerate(enumerate);
+  std::stable_sort(all.begin(), all.end(),
+                   [](const Extremity_assignment& x, const Extremity_assignment& y) { return x.score < y.score; });
+  all.resize(std::min(all.size(), count));
+  return all;
+}
+
+/// The extremity hypotheses of automatic_initial_maps(): when the sample distortion of the maps
+/// (pair_distortion(), stored in the result) is above `extremity_hypothesis_threshold`, a pass
+/// (single_pass_initial_maps() with all the fits, in the orientation of the meshes) and its tear
+/// repair (repair_torn_maps()) run from each of the `extremity_hypotheses` best assignments of the
+/// extremities of both shapes (extremity_assignments()) as landmarks, added to the user's; the
+/// maps of lowest sample distortion are kept, the given ones included. Descriptor-based
+/// functional maps assume a near-isometry: on a gorilla and a man they match the gorilla's long
+/// arms to the man's legs, and every fit does so; the extremities and the proportions of their
+/// distances survive the change of species.
+template <typename ConcurrencyTag>
+Automatic_initialization_result try_extremity_hypotheses(const Initialization_shape& shape1,
+                                                         const Initialization_shape& shape2,
+                                                         const Initialization_settings& s,
+                                                         std::vector<std::size_t>& map_12,
+                                                         std::vector<std::size_t>& map_21,
+                                                         Automatic_initialization_result result,
+                                                         Initialization_pass_cache& cache)
+{
+  if(s.extremity_hypotheses <= 0) return result;
+  prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, cache);
+  double distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21);
+  result.sample_distortion = distortion;
+  if(result.distortion_repair_passes == 0) result.sample_distortion_before = distortion;
+  if(distortion <= s.extremity_hypothesis_threshold) return result;
+  const auto start = std::chrono::steady_clock::now();
+  Shape_extremities e1, e2;
+  auto extremities = [&](const Initialization_shape& shape, const Initialization_sampling& sampling,
+                         Shape_extremities& out) {
+    const std::vector<int>& samples = sampling.samples.distortion_vertices;
+    const std::vector<int> sources(samples.begin(),
+                                   samples.begin() + std::min<std::ptrdiff_t>(std::ptrdiff_t(samples.size()),
+                                                                              s.extremity_sources));
+    out = shape_extremities(*shape.mesh, sampling.geodesics, sources, s.extremity_radius, s.maximum_extremities);
+  };
+  invoke_both<ConcurrencyTag>([&] { extremities(shape1, cache.first, e1); },
+                              [&] { extremities(shape2, cache.second, e2); });
+  const std::vector<Extremity_assignment> assignments =
+      extremity_assignments(e1.distances, e2.distances, std::size_t(s.extremity_hypotheses));
+  result.extremities_1 = int(e1.vertices.size());
+  result.extremities_2 = int(e2.vertices.size());
+  if(s.verbose)
+  {
+    std::cerr << "automatic_initial_maps: sample distortion " << distortion << ": " << e1.vertices.size() << " and "
+              << e2.vertices.size() << " extremities, " << assignments.size() << " hypotheses\n";
+    for(const Extremity_assignment& a : assignments)
+    {
+      std::cerr << "  score " << a.score << ":";
+      for(const auto& p : a.pairs)
+        std::cerr << " " << e1.vertices[std::size_t(p.first)] << "-" << e2.vertices[std::size_t(p.second)];
+      std::cerr << "\n";
+    }
+  }
+  // From each hypothesis, a pass with all the fits of the first one, in the orientation of the
+  // meshes, and its tear repair, whose landmarks from the core of its maps pin the body between
+  // the extremities; the maps of lowest sample distortion are kept.
+  double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
+  int passes = result.passes;
+  for(std::size_t h = 0; h < assignments.size(); ++h)
+  {
+    Initialization_settings hypothesis = s;
+    hypothesis.landmark_orientation = 1;
+    for(const auto& p : assignments[h].pairs)
+      hypothesis.landmarks.emplace_back(std::size_t(e1.vertices[std::size_t(p.first)]),
+                                        std::size_t(e2.vertices[std::size_t(p.second)]));
+    std::vector<std::size_t> r12, r21;
+    Automatic_initialization_result r =
+        single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, hypothesis, r12, r21, &cache);
+    r = repair_torn_maps<ConcurrencyTag>(shape1, shape2, hypothesis, r12, r21, r, &cache);
+    passes += r.passes;
+    functional_map_seconds += r.functional_map_seconds;
+    zoomout_seconds += r.zoomout_seconds;
+    const double d = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, r12, r21);
+    const bool keep = d < distortion;
+    if(s.verbose)
+      std::cerr << "automatic_initial_maps: extremity hypothesis " << h + 1 << " (score " << assignments[h].score
+                << ", " << r.repair_passes << " tear repair passes): distortion " << d
+                << (keep ? " (kept)" : " (discarded)") << "\n";
+    if(!keep) continue;
+    r.spectra_seconds = result.spectra_seconds;
+    r.torn_fraction_before = result.torn_fraction_before;
+    r.repair_passes += result.repair_passes;
+    r.distortion_repair_passes = result.distortion_repair_passes;
+    r.sample_distortion_before = result.sample_distortion_before;
+    r.extremities_1 = result.extremities_1;
+    r.extremities_2 = result.extremities_2;
+    r.sample_distortion = d;
+    r.extremity_hypothesis = int(h) + 1;
+    result = r;
+    map_12.swap(r12);
+    map_21.swap(r21);
+    distortion = d;
+  }
+  result.extremity_hypotheses = int(assignments.size());
+  result.functional_map_seconds = functional_map_seconds;
+  result.zoomout_seconds = zoomout_seconds;
+  result.passes = passes;
+  result.extremity_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+/// The core of automatic_initial_maps() on precomputed shapes (see single_pass_initial_maps()):
+/// one pass, then the tear repair (repair_torn_maps()), the distortion repair
+/// (repair_distorted_maps()) and the extremity hypotheses (try_extremity_hypotheses()), then the
+/// growth to the final size (grow_initial_maps()) unless `grow` is false (the maps then stay at the pass size, for a comparison before the growth).
+template <typename ConcurrencyTag>
+Automatic_initialization_result automatic_initial_maps(const Initialization_shape& shape1,
+                                                       const Initialization_shape& shape2,
+                                                       const Initialization_settings& s,
+                                                       std::vector<std::size_t>& map_12,
+                                                       std::vector<std::size_t>& map_21,
+                                                       Initialization_pass_cache* pass_cache = nullptr,
+                                                       bool grow = true)
+{
+  const auto start = std::chrono::steady_clock::now();
+  Initialization_pass_cache own_cache;
+  Initialization_pass_cache& cache = pass_cache ? *pass_cache : own_cache;
+  const Automatic_initialization_result first =
+      single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, &cache);
+  Automatic_initialization_result result =
+      repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, first, &cache);
+  if(s.distortion_repair_passes > 0)
+    result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
+  if(s.extremity_hypotheses > 0)
+    result = try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache);
+  if(grow) grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
+  result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+} // namespace internal
+} // namespace Surface_mesh_correspondence
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
