@@ -116,12 +116,24 @@ def read_pairs(pairs_file):
     return pairs
 
 
+def _file_mode(path):
+    """The permissions a rewritten `path` keeps: its own, or for a new file those that open() would
+    give it (0666 less the umask; mkstemp's temporary files are 0600)."""
+    try:
+        return os.stat(path).st_mode & 0o7777
+    except FileNotFoundError:
+        mask = os.umask(0)
+        os.umask(mask)
+        return 0o666 & ~mask
+
+
 def _write_atomically(path, write):
     folder = os.path.dirname(os.path.abspath(path))
     fd, temporary = tempfile.mkstemp(dir=folder, prefix="." + os.path.basename(path) + ".tmp-")
     try:
         with os.fdopen(fd, "w", newline="") as f:
             write(f)
+        os.chmod(temporary, _file_mode(path))
         os.replace(temporary, path)
     except BaseException:
         if os.path.exists(temporary):

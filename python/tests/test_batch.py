@@ -211,3 +211,22 @@ def test_bad_settings_and_missing_pairs_file(collection, tmp_path):
     run = subprocess.run([sys.executable, "-m", "comap.batch", str(collection / "pairs.csv")],
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 2 and "--out" in run.stderr
+
+
+def test_results_file_has_the_permissions_of_a_new_file(tmp_path):
+    """The results table is written through a temporary file (0600) but ends with the permissions
+    open() would give it, or those of the file it replaces."""
+    mask = os.umask(0o022)
+    try:
+        path = tmp_path / "results.csv"
+        comap.batch.write_results(str(path), [{"name": "a-b", "status": "ok"}])
+        assert os.stat(path).st_mode & 0o777 == 0o644
+        os.chmod(path, 0o640)
+        comap.batch.write_results(str(path), [])
+        assert os.stat(path).st_mode & 0o777 == 0o640
+        with open(path, newline="") as f:
+            assert list(csv.DictReader(f)) == []
+        assert sorted(os.listdir(tmp_path)) == ["results.csv"]
+    finally:
+        os.umask(mask)
+
