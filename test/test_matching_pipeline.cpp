@@ -554,8 +554,8 @@ std::string initialization_fingerprint(const smc::Matching_settings& m)
     << ' ' << s.procrustes << ' ' << s.coupled_zoomout << ' ' << s.zoomout_bijectivity_weight << ' '
     << s.zoomout_number_of_samples << ' ' << s.tear_repair_passes << ' ' << s.tear_threshold << ' '
     << s.tear_min_fraction << ' ' << s.tear_repair_distortion_tolerance << ' ' << s.tear_repair_landmarks << ' '
-    << s.distortion_repair_passes << ' ' << s.automatic_maps_comparison_threshold << ' '
-    << s.automatic_maps_maximum_distortion;
+    << s.distortion_repair_passes << ' ' << s.extremity_hypotheses << ' ' << s.extremity_hypothesis_threshold << ' '
+    << s.automatic_maps_comparison_threshold << ' ' << s.automatic_maps_maximum_distortion;
   return o.str();
 }
 std::string refinement_fingerprint(const smc::Matching_settings& m)

@@ -146,8 +146,8 @@ inline double proportion_distortion(const Eigen::MatrixXd& D1, const Eigen::Matr
 
 /// The `count` assignments of lowest proportion_distortion() among the injective assignments of
 /// every extremity of the shape with fewer extremities to those of the other (all of them are
-/// enumerated: at most 8!/2 for 8 extremities), by increasing score (ties in enumeration order).
-/// Empty when either shape has fewer than three extremities.
+/// enumerated: 7! = 5040 for seven extremities on each shape), by increasing score (ties in
+/// enumeration order). Empty when either shape has fewer than three extremities.
 inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::MatrixXd& D1, const Eigen::MatrixXd& D2,
                                                                std::size_t count)
 {
