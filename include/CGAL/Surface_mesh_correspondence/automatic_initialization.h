@@ -124,7 +124,8 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// distort those distances by more than 0.1 (`extremity_hypothesis_threshold`: pairs far from
 /// isometric, where every descriptor fit can be wrong as a whole) the extremity hypotheses: passes
 /// from assignments of the extremities of both shapes that keep the proportions of their geodesic
-/// distances, the least distorted maps kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size` (grow_initial_maps()).
+/// distances, the least distorted maps kept. Finally the kept maps grow by the same coupled
+/// ZoomOut to `zoomout_final_size` (grow_initial_maps()).
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
 /// orientations (signed volumes of opposite signs) the orientation term is reversed

@@ -456,14 +456,18 @@ Matching_diagnostics matching_diagnostics(const Shape_data& M1, const Fast_march
   std::optional<Diagnostics_layout> l1, l2;
   invoke_both<ConcurrencyTag>([&] { l1.emplace(M1.mesh, g1, settings.regions, ConcurrencyTag()); },
                               [&] { l2.emplace(M2.mesh, g2, settings.regions, ConcurrencyTag()); });
+  // The same maps before and after (no refinement, or nothing changed) are measured once.
+  const bool same = b12 == a12 && b21 == a21;
   invoke_both<ConcurrencyTag>(
       [&] {
         d.before[0] = direction_diagnostics<ConcurrencyTag>(M1, g1, M2, g2, b12, b21, *l1, settings);
-        d.after[0] = direction_diagnostics<ConcurrencyTag>(M1, g1, M2, g2, a12, a21, *l1, settings);
+        d.after[0] =
+            same ? d.before[0] : direction_diagnostics<ConcurrencyTag>(M1, g1, M2, g2, a12, a21, *l1, settings);
       },
       [&] {
         d.before[1] = direction_diagnostics<ConcurrencyTag>(M2, g2, M1, g1, b21, b12, *l2, settings);
-        d.after[1] = direction_diagnostics<ConcurrencyTag>(M2, g2, M1, g1, a21, a12, *l2, settings);
+        d.after[1] =
+            same ? d.before[1] : direction_diagnostics<ConcurrencyTag>(M2, g2, M1, g1, a21, a12, *l2, settings);
       });
   d.regions_1 = std::move(l1->regions);
   d.regions_2 = std::move(l2->regions);
