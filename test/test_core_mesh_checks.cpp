@@ -241,6 +241,30 @@ BOOST_AUTO_TEST_CASE(mesh_files_name_file_and_line)
   BOOST_TEST(contains(problem("points.xyz", "0 0 0\n"), "unknown mesh format"));
   BOOST_TEST(contains(error_of([&] { smc::read_triangle_mesh(dir + "/missing.off", off); }), "cannot open"));
   BOOST_TEST(contains(error_of([&] { smc::read_triangle_mesh(dir, off); }), "it is a directory"));
+  // The same files as triangle soups: the file's points and faces as they are, the problems of
+  // the soup itself named with the line, those of the surface left to the shape.
+  const smc::Triangle_soup soup = smc::read_triangle_soup(write("tet.off", tet_off));
+  BOOST_TEST(soup.number_of_vertices() == 4u);
+  BOOST_TEST(soup.number_of_triangles() == 4u);
+  for(std::size_t i = 0; i < 4; ++i)
+  {
+    BOOST_TEST(soup.points()[i][0] == expected[i].x());
+    BOOST_TEST(soup.points()[i][2] == expected[i].z());
+  }
+  BOOST_TEST((soup.triangles()[1] == std::array<int, 3>{{2, 1, 0}}));
+  BOOST_TEST(soup.origin().name == dir + "/tet.off");
+  BOOST_TEST(soup.origin().face_lines.size() == 4u);
+  BOOST_TEST(contains(error_of([&] { smc::read_triangle_soup(write("nan.off", "OFF\n4 4 0\n0 0 1\n1 0 nan\n0 0 0\n0 1 0\n"
+                                                                             "3 2 3 1\n3 2 1 0\n3 2 0 3\n3 1 3 0\n")); }),
+                      "nan.off:4: vertex 1 has a non-finite coordinate"));
+  BOOST_TEST(contains(error_of([&] { smc::read_triangle_soup(write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")); }),
+                      "quad.obj:5: 1 of 1 faces are not triangles"));
+  const smc::Triangle_soup fin = smc::read_triangle_soup(write("fin.off", "OFF\n5 5 0\n0 0 1\n1 0 0\n0 0 0\n0 1 0\n2 -1 0\n"
+                                                                         "3 2 3 1\n3 2 1 0\n3 2 0 3\n3 1 3 0\n3 2 1 4\n"));
+  BOOST_TEST(fin.number_of_triangles() == 5u);
+  BOOST_TEST(contains(error_of([&] { smc::check_triangle_soup(fin.points(), fin.triangles(), fin.origin()); }),
+                      "fin.off is not manifold: the edge (1, 2) is shared by 3 faces"));
+  BOOST_TEST(contains(error_of([&] { smc::read_triangle_soup(dir + "/missing.off"); }), "cannot open"));
   std::filesystem::remove_all(dir);
 }
 

@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <csignal>
 #include <cmath>
 #include <cstdio>
@@ -806,6 +807,109 @@ BOOST_AUTO_TEST_CASE(both_overloads_give_the_same_maps)
   BOOST_TEST((q12 == a.m12));
   BOOST_TEST((q21 == a.m21));
   BOOST_TEST(pr.inconsistent_vertices_after == a.result.inconsistent_vertices_after);
+}
+
+/// The triangle soup of `m`: its points in index order and its faces as the FaceGraph walks them.
+smc::Triangle_soup soup_of(const Mesh& m, const std::string& name = "mesh")
+{
+  std::vector<std::array<double, 3> > points;
+  for(Vertex v : m.vertices()) points.push_back({{m.point(v).x(), m.point(v).y(), m.point(v).z()}});
+  std::vector<std::vector<std::size_t> > faces;
+  for(auto f : m.faces())
+  {
+    faces.emplace_back();
+    for(Vertex v : m.vertices_around_face(m.halfedge(f))) faces.back().push_back(v.idx());
+  }
+  return smc::Triangle_soup(points, faces, smc::Triangle_soup_origin(name));
+}
+
+BOOST_AUTO_TEST_CASE(triangle_soups_give_the_maps_of_their_face_graphs)
+{
+  const Pipeline_data& d = data();
+  const smc::Matching_settings fast = fast_settings();
+  typedef smc::Correspondence_shape<smc::Triangle_soup, CGAL::Sequential_tag> Soup_shape;
+  const smc::Triangle_soup soup1 = soup_of(d.bent.m1), soup2 = soup_of(d.bent.m2);
+  BOOST_TEST(soup1.number_of_vertices() == num_vertices(d.bent.m1));
+  BOOST_TEST(soup1.number_of_triangles() == num_faces(d.bent.m1));
+  const Soup_shape s1(soup1, params::matching_settings(fast)), s2(soup2, params::matching_settings(fast));
+  BOOST_TEST(s1.number_of_vertices() == d.bent1.number_of_vertices());
+  for(std::size_t i = 0; i < s1.number_of_vertices(); i += 17) BOOST_TEST(s1.vertex(i) == i);
+  // The same flat meshes, spectra and descriptors as the Surface_mesh shapes...
+  BOOST_TEST((s1.data().mesh.triangles == d.bent1.data().mesh.triangles));
+  BOOST_TEST((s2.data().mesh.points == d.bent2.data().mesh.points));
+  BOOST_TEST((s1.descriptors() == d.bent1.descriptors()));
+  // ... hence the same maps, from automatic and from given initial maps.
+  const Run a = run_shapes(d.bent1, d.bent2, params::matching_settings(fast));
+  const Run b = run_shapes(s1, s2, params::matching_settings(fast));
+  BOOST_TEST((a.m12 == b.m12));
+  BOOST_TEST((a.m21 == b.m21));
+  BOOST_TEST(a.result.inconsistent_vertices_after == b.result.inconsistent_vertices_after);
+  BOOST_TEST((a.result.decisions == b.result.decisions));
+  const Index_map i12 = smc_test::perturbed(d.bent.gt_12, d.bent.m2, 0.3, 3, 21u);
+  const Index_map i21 = smc_test::perturbed(d.bent.gt_21, d.bent.m1, 0.3, 3, 22u);
+  const auto given = params::initial_maps(i12, i21, params::matching_settings(fast_given_settings()));
+  const Run c = run_shapes(d.bent1, d.bent2, given), e = run_shapes(s1, s2, given);
+  BOOST_TEST((c.m12 == e.m12));
+  BOOST_TEST((c.m21 == e.m21));
+  // A soup and a Surface_mesh shape match each other.
+  Index_map f12, f21;
+  smc::match_shapes(s1, d.bent2, f12, f21, params::matching_settings(fast));
+  BOOST_TEST((f12 == a.m12));
+  // match_shapes() on the soups themselves: the same runs, the preparation included.
+  Index_map g12, g21;
+  const smc::Matching_result g = smc::match_shapes(soup1, soup2, g12, g21, params::matching_settings(fast));
+  BOOST_TEST((g12 == a.m12));
+  BOOST_TEST((g21 == a.m21));
+  BOOST_TEST(g.seconds(Stage::preparation) > 0.0);
+  Index_map h12, h21;
+  smc::match_shapes<CGAL::Parallel_tag>(soup1, soup2, h12, h21, given);
+  BOOST_TEST((h12 == c.m12));
+  BOOST_TEST((h21 == c.m21));
+  const Index_map short12(i12.begin(), i12.end() - 1);
+  BOOST_TEST(contains(smc_test::error_of<smc::Invalid_map_error>([&] {
+                        smc::match_shapes(soup1, soup2, h12, h21,
+                                          params::initial_maps(short12, i21, params::matching_settings(fast)));
+                      }),
+                      "initial map 1->2"));
+  BOOST_TEST((h12 == c.m12));  // untouched by a failed run
+  // The evaluator on a soup measures what it measures on the mesh.
+  const smc::Map_evaluator<> on_soup2(soup2);
+  BOOST_TEST(on_soup2.geodesic_errors(a.m12, all_vertices(a.m12.size()), d.bent.gt_12).mean ==
+             error_12(d.bent, d.on_bent2, a.m12));
+
+  // What a soup gets wrong is named with the soup's origin (its file and line), or with the
+  // shape's name when the soup has none.
+  typedef std::array<double, 3> P;
+  typedef std::array<int, 3> T;
+  const std::vector<P> tet = {{0, 0, 1}, {1, 0, 0}, {0, 0, 0}, {0, 1, 0}};
+  const std::vector<T> faces = {{2, 3, 1}, {2, 1, 0}, {2, 0, 3}, {1, 3, 0}};
+  auto shape_error = [&](const smc::Triangle_soup& soup, const std::string& name) {
+    return smc_test::error_of<smc::Invalid_mesh_error>(
+        [&] { const Soup_shape s(soup, params::matching_settings(fast), name); });
+  };
+  std::vector<P> fin = tet;
+  fin.push_back({2, -1, 0});
+  std::vector<T> fin_faces = faces;
+  fin_faces.push_back({2, 1, 4});
+  BOOST_TEST(contains(shape_error(smc::Triangle_soup(fin, fin_faces, smc::Triangle_soup_origin("fin.off")), "mesh 1"),
+                      "fin.off is not manifold: the edge (1, 2) is shared by 3 faces"));
+  BOOST_TEST(contains(shape_error(smc::Triangle_soup(fin, fin_faces), "mesh 2"), "mesh 2 is not manifold"));
+  const std::vector<T> flipped = {{2, 3, 1}, {1, 2, 0}, {2, 0, 3}, {1, 3, 0}};
+  BOOST_TEST(contains(shape_error(smc::Triangle_soup(tet, flipped, smc::Triangle_soup_origin("flip.off")), "mesh 1"),
+                      "flip.off has inconsistently oriented faces: faces 0 and 1"));
+  BOOST_TEST(contains(shape_error(smc::Triangle_soup(tet, faces), "mesh 1"), "mesh 1 has 4 vertices, too few"));
+  BOOST_TEST(contains(shape_error(smc::Triangle_soup(), "mesh 1"), "mesh 1"));
+  // The soup's own checks run when it is built.
+  smc::Triangle_soup_origin origin("nan.off");
+  origin.vertex_lines = {3, 4, 5, 6};
+  origin.face_lines = {7, 8, 9, 10};
+  std::vector<P> nan = tet;
+  nan[1][2] = std::numeric_limits<double>::quiet_NaN();
+  BOOST_TEST(contains(smc_test::error_of<smc::Invalid_mesh_error>([&] { const smc::Triangle_soup bad(nan, faces, origin); }),
+                      "nan.off:4: vertex 1 has a non-finite coordinate"));
+  BOOST_TEST(contains(smc_test::error_of<smc::Invalid_mesh_error>(
+                          [&] { const smc::Triangle_soup bad(tet, std::vector<T>{{2, 3, 1}, {2, 1, 5}}, origin); }),
+                      "nan.off:8: face 1 refers to vertex 5 but the mesh has 4 vertices"));
 }
 
 // ------------------------------------------------------------------------------------ 2. visitor

@@ -18,6 +18,7 @@
 #include <CGAL/Surface_mesh_correspondence/matching_settings.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 #include <CGAL/Surface_mesh_correspondence/spectrum.h>
+#include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #include <Eigen/Core>
 
@@ -227,6 +228,19 @@ void prepare_shape_data(Shape_data& d, const Shape_settings& s, const Eigen::Mat
 
 namespace internal {
 
+/// The vertex type of a shape's mesh: the FaceGraph's vertex descriptor, or the point index of a
+/// Triangle_soup.
+template <typename TriangleMesh>
+struct Shape_vertex
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor type;
+};
+template <>
+struct Shape_vertex<Triangle_soup>
+{
+  typedef std::size_t type;
+};
+
 /// Whether a shape is prepared for the automatic initialisation too (its spectrum with the
 /// initialisation's eigenpairs, its descriptors): match_shapes() on meshes leaves it out when the
 /// run does not need it.
@@ -250,14 +264,16 @@ struct Shape_preparation
 /// Vertices are numbered by the mesh's vertex index map (named parameter `vertex_index_map`);
 /// maps between prepared shapes are vectors of such indices (Vertex_index_map_vector).
 ///
-/// \tparam TriangleMesh a model of `FaceListGraph` whose faces are triangles
+/// \tparam TriangleMesh a model of `FaceListGraph` whose faces are triangles, or Triangle_soup
+///   (points and index triples, needing no halfedge data structure: vertex i is point i)
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` or `CGAL::Parallel_tag` (descriptors and the
 ///   distance oracle are computed in parallel)
 template <typename TriangleMesh, typename ConcurrencyTag = CGAL::Sequential_tag>
 class Correspondence_shape
 {
 public:
-  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  /// The mesh's vertex descriptor (`std::size_t`, the point index, for a Triangle_soup).
+  typedef typename internal::Shape_vertex<TriangleMesh>::type vertex_descriptor;
 
   /// Prepares `tm`. The mesh must be a connected, manifold triangle mesh (boundaries are fine).
   /// \param tm the mesh (its geometry is copied into the shape)
@@ -274,8 +290,9 @@ public:
   ///     `std::cref(spectrum)` or as a `std::shared_ptr<const Laplace_beltrami_spectrum>`, which is
   ///     shared instead of copied): used instead of a new eigensolve; a spectrum of another mesh
   ///     (vertex count or areas) throws Invalid_parameter_error;
-  ///   - `vertex_point_map`, `vertex_index_map`.
-  /// \param name the mesh's name in error messages
+  ///   - `vertex_point_map`, `vertex_index_map` (not for a Triangle_soup).
+  /// \param name the mesh's name in error messages (a Triangle_soup's own origin, when it has a
+  ///   name, takes precedence)
   /// \throws Invalid_mesh_error (empty, non-triangle, non-manifold, degenerate face, NaN,
   ///   isolated vertex, several components, too few vertices for the initialisation's basis),
   ///   Invalid_parameter_error, Numerical_error
@@ -295,7 +312,10 @@ public:
     auto t = std::chrono::steady_clock::now();
     internal::Mesh_requirements req;
     req.allow_several_components = false;
-    data_->mesh = internal::make_indexed_mesh(tm, np, req, name, &vertices_);
+    if constexpr(std::is_same<TriangleMesh, Triangle_soup>::value)
+      data_->mesh = internal::make_soup_indexed_mesh(tm, req, name, &vertices_);
+    else
+      data_->mesh = internal::make_indexed_mesh(tm, np, req, name, &vertices_);
     data_->times.mesh = internal::seconds_since(t);
     internal::Shape_settings s = internal::Shape_settings::from(settings);
     if(!preparation.for_initialization) s.initialization_eigenpairs = 0;

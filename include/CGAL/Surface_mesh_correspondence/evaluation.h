@@ -16,6 +16,7 @@
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
+#include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #include <algorithm>
 #include <cmath>
@@ -161,6 +162,11 @@ public:
   /// Builds the evaluator for meshes given as a flat copy.
   explicit Map_evaluator(const internal::Indexed_mesh& mesh)
       : mesh_(std::make_shared<internal::Indexed_mesh>(mesh)), distances_(*mesh_)
+  {}
+
+  /// Builds the evaluator for a triangle soup (vertex i is point i).
+  explicit Map_evaluator(const Triangle_soup& soup)
+      : Map_evaluator(internal::make_soup_indexed_mesh(soup, lenient_requirements(), "mesh"))
   {}
 
   /// Builds the evaluator for `tm`.

@@ -452,6 +452,53 @@ Matching_result with_matching_events(const NamedParameters& np, const F& f)
   }
 }
 
+/// The pipeline of match_shapes() on meshes that are not prepared yet: the validation, the
+/// preparation of both shapes (both at once with Parallel_tag), the run on them.
+/// `initial_maps(s1, s2, in)` puts the given initial maps into `in` as indices (once the shapes
+/// know their vertices), `output(s1, s2, x12, x21)` writes the maps.
+template <typename ConcurrencyTag, typename TriangleMesh1, typename TriangleMesh2, typename NamedParameters,
+          typename NamedParameters1, typename NamedParameters2, typename InitialMaps, typename Output>
+Matching_result match_unprepared_meshes(const TriangleMesh1& tm1, const TriangleMesh2& tm2, std::size_t n1,
+                                        std::size_t n2, bool has_initial_maps, const NamedParameters& np,
+                                        const NamedParameters1& np1, const NamedParameters2& np2,
+                                        const InitialMaps& initial_maps, const Output& output)
+{
+  const auto start = std::chrono::steady_clock::now();
+  return with_matching_events(np, [&](auto& events) {
+    events.begin(Matching_stage::validation);
+    Matching_inputs in = matching_inputs(np, n1, n2);
+    const double validation = events.end(Matching_stage::validation);
+
+    events.begin(Matching_stage::preparation);
+    const bool for_initialization =
+        !has_initial_maps || in.settings.repair_given_maps || in.settings.compare_with_automatic_maps;
+    typedef Correspondence_shape<TriangleMesh1, ConcurrencyTag> Shape1;
+    typedef Correspondence_shape<TriangleMesh2, ConcurrencyTag> Shape2;
+    std::optional<Shape1> s1;
+    std::optional<Shape2> s2;
+    int prepared = 0;
+    invoke_both<ConcurrencyTag>(
+        [&] {
+          s1.emplace(tm1, parameters::combine(np1, np), Shape_preparation{for_initialization}, "mesh 1");
+          events.progress(0.5 * ++prepared);
+        },
+        [&] {
+          s2.emplace(tm2, parameters::combine(np2, np), Shape_preparation{for_initialization}, "mesh 2");
+          events.progress(0.5 * ++prepared);
+        });
+    const double preparation = events.end(Matching_stage::preparation);
+
+    initial_maps(*s1, *s2, in);
+    std::vector<int> x12, x21;
+    Matching_result result = match_prepared_shapes<ConcurrencyTag>(s1->data(), s2->data(), in, x12, x21, events, start);
+    result.stage_seconds[std::size_t(Matching_stage::validation)] = validation;
+    result.stage_seconds[std::size_t(Matching_stage::preparation)] = preparation;
+    output(*s1, *s2, x12, x21);
+    result.total_seconds = seconds_since(start);
+    return result;
+  });
+}
+
 template <typename T>
 struct Is_correspondence_shape : std::false_type
 {};
@@ -557,57 +604,71 @@ template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh1
           typename NamedParameters = parameters::Default_named_parameters,
           typename NamedParameters1 = parameters::Default_named_parameters,
           typename NamedParameters2 = parameters::Default_named_parameters>
-typename std::enable_if<!internal::Is_correspondence_shape<TriangleMesh1>::value, Matching_result>::type
+typename std::enable_if<!internal::Is_correspondence_shape<TriangleMesh1>::value &&
+                            !std::is_same<TriangleMesh1, Triangle_soup>::value,
+                        Matching_result>::type
 match_shapes(const TriangleMesh1& tm1, const TriangleMesh2& tm2, VertexVertexMap12 map_12, VertexVertexMap21 map_21,
              const NamedParameters& np = parameters::default_values(),
              const NamedParameters1& np1 = parameters::default_values(),
              const NamedParameters2& np2 = parameters::default_values())
 {
-  const auto start = std::chrono::steady_clock::now();
-  return internal::with_matching_events(np, [&](auto& events) {
-    events.begin(Matching_stage::validation);
-    internal::Matching_inputs in =
-        internal::matching_inputs(np, std::size_t(num_vertices(tm1)), std::size_t(num_vertices(tm2)));
-    const auto& given = parameters::get_parameter_reference(np, internal_np::initial_maps);
-    constexpr bool has_initial_maps =
-        !std::is_same<typename std::decay<decltype(given)>::type, CGAL::internal_np::Param_not_found>::value;
-    Matching_result result;
-    result.stage_seconds[std::size_t(Matching_stage::validation)] = events.end(Matching_stage::validation);
+  const auto& given = parameters::get_parameter_reference(np, internal_np::initial_maps);
+  constexpr bool has_initial_maps =
+      !std::is_same<typename std::decay<decltype(given)>::type, CGAL::internal_np::Param_not_found>::value;
+  return internal::match_unprepared_meshes<ConcurrencyTag>(
+      tm1, tm2, std::size_t(num_vertices(tm1)), std::size_t(num_vertices(tm2)), has_initial_maps, np, np1, np2,
+      [&](const auto& s1, const auto& s2, internal::Matching_inputs& in) {
+        if constexpr(has_initial_maps)
+        {
+          auto vim1 = CGAL::get_initialized_vertex_index_map(tm1, np1);
+          auto vim2 = CGAL::get_initialized_vertex_index_map(tm2, np2);
+          in.initial_maps.emplace(
+              internal::vertex_map_indices<int>(given.first, tm2, s1, vim2, "initial map 1->2", "mesh 2"),
+              internal::vertex_map_indices<int>(given.second, tm1, s2, vim1, "initial map 2->1", "mesh 1"));
+        }
+        else
+          (void)s1, (void)s2, (void)in;
+      },
+      [&](const auto& s1, const auto& s2, const std::vector<int>& x12, const std::vector<int>& x21) {
+        for(std::size_t i = 0; i < x12.size(); ++i) put(map_12, s1.vertex(i), s2.vertex(std::size_t(x12[i])));
+        for(std::size_t k = 0; k < x21.size(); ++k) put(map_21, s2.vertex(k), s1.vertex(std::size_t(x21[k])));
+      });
+}
 
-    events.begin(Matching_stage::preparation);
-    const bool for_initialization =
-        !has_initial_maps || in.settings.repair_given_maps || in.settings.compare_with_automatic_maps;
-    typedef Correspondence_shape<TriangleMesh1, ConcurrencyTag> Shape1;
-    typedef Correspondence_shape<TriangleMesh2, ConcurrencyTag> Shape2;
-    std::optional<Shape1> s1;
-    std::optional<Shape2> s2;
-    int prepared = 0;
-    internal::invoke_both<ConcurrencyTag>(
-        [&] {
-          s1.emplace(tm1, parameters::combine(np1, np), internal::Shape_preparation{for_initialization}, "mesh 1");
-          events.progress(0.5 * ++prepared);
-        },
-        [&] {
-          s2.emplace(tm2, parameters::combine(np2, np), internal::Shape_preparation{for_initialization}, "mesh 2");
-          events.progress(0.5 * ++prepared);
-        });
-    const double preparation = events.end(Matching_stage::preparation);
-
-    auto vim1 = CGAL::get_initialized_vertex_index_map(tm1, np1);
-    auto vim2 = CGAL::get_initialized_vertex_index_map(tm2, np2);
-    if constexpr(has_initial_maps)
-      in.initial_maps.emplace(internal::vertex_map_indices<int>(given.first, tm2, *s1, vim2, "initial map 1->2", "mesh 2"),
-                              internal::vertex_map_indices<int>(given.second, tm1, *s2, vim1, "initial map 2->1", "mesh 1"));
-    std::vector<int> x12, x21;
-    const double validation = result.stage_seconds[std::size_t(Matching_stage::validation)];
-    result = internal::match_prepared_shapes<ConcurrencyTag>(s1->data(), s2->data(), in, x12, x21, events, start);
-    result.stage_seconds[std::size_t(Matching_stage::validation)] = validation;
-    result.stage_seconds[std::size_t(Matching_stage::preparation)] = preparation;
-    for(std::size_t i = 0; i < x12.size(); ++i) put(map_12, s1->vertex(i), s2->vertex(std::size_t(x12[i])));
-    for(std::size_t k = 0; k < x21.size(); ++k) put(map_21, s2->vertex(k), s1->vertex(std::size_t(x21[k])));
-    result.total_seconds = internal::seconds_since(start);
-    return result;
-  });
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// match_shapes() on two triangle soups (Triangle_soup: points and index triples, vertex i being
+/// point i), which need no halfedge data structure: the same pipeline, with the maps as vectors
+/// of point indices (`map_12[i]`: the point of `soup_2` matched to point i of `soup_1`), written
+/// only when the run succeeds. Named parameters: those of match_shapes() on meshes, with
+/// `initial_maps(a, b)` taking two Vertex_index_map_vector.
+/// \throws as match_shapes() on meshes
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename NamedParameters = parameters::Default_named_parameters>
+Matching_result match_shapes(const Triangle_soup& soup_1, const Triangle_soup& soup_2,
+                             Vertex_index_map_vector& map_12, Vertex_index_map_vector& map_21,
+                             const NamedParameters& np = parameters::default_values())
+{
+  const auto& given = parameters::get_parameter_reference(np, internal_np::initial_maps);
+  constexpr bool has_initial_maps =
+      !std::is_same<typename std::decay<decltype(given)>::type, CGAL::internal_np::Param_not_found>::value;
+  const std::size_t n1 = soup_1.number_of_vertices(), n2 = soup_2.number_of_vertices();
+  if constexpr(has_initial_maps)
+  {
+    check_vertex_map(given.first, n1, n2, "initial map 1->2");
+    check_vertex_map(given.second, n2, n1, "initial map 2->1");
+  }
+  return internal::match_unprepared_meshes<ConcurrencyTag>(
+      soup_1, soup_2, n1, n2, has_initial_maps, np, parameters::default_values(), parameters::default_values(),
+      [&](const auto&, const auto&, internal::Matching_inputs& in) {
+        if constexpr(has_initial_maps)
+          in.initial_maps.emplace(std::vector<int>(given.first.begin(), given.first.end()),
+                                  std::vector<int>(given.second.begin(), given.second.end()));
+        else
+          (void)in;
+      },
+      [&](const auto&, const auto&, const std::vector<int>& x12, const std::vector<int>& x21) {
+        map_12.assign(x12.begin(), x12.end());
+        map_21.assign(x21.begin(), x21.end());
+      });
 }
 
 } // namespace Surface_mesh_correspondence

@@ -14,6 +14,7 @@
 #include <CGAL/IO/OFF.h>
 #include <CGAL/IO/PLY.h>
 #include <CGAL/IO/STL.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <cctype>
 #include <cerrno>
@@ -22,6 +23,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/stat.h>
@@ -277,6 +279,21 @@ void read_triangle_mesh(const std::string& file, PolygonMesh& mesh)
   Triangle_soup_origin origin;
   read_triangle_soup(file, points, polygons, origin);
   triangle_soup_to_mesh(points, polygons, mesh, origin);
+}
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Reads a mesh file (read_triangle_soup()) into a Triangle_soup, with the file name and, for OFF
+/// and OBJ text files, the lines of the vertices and faces for its messages: point i is the i-th
+/// point of the file. No halfedge data structure is built.
+/// \throws IO_error (see read_triangle_soup()), Invalid_mesh_error (the checks of Triangle_soup),
+///   each naming the file
+inline Triangle_soup read_triangle_soup(const std::string& file)
+{
+  std::vector<CGAL::Simple_cartesian<double>::Point_3> points;
+  Soup_polygons polygons;
+  Triangle_soup_origin origin;
+  read_triangle_soup(file, points, polygons, origin);
+  return Triangle_soup(points, polygons, std::move(origin));
 }
 
 } // namespace Surface_mesh_correspondence

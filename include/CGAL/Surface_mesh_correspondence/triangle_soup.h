@@ -15,6 +15,8 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <array>
+
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -89,76 +91,152 @@ inline void check_soup_orientation(const Indexed_mesh& m, const std::string& lab
 } // namespace internal
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// A triangle mesh given as a triangle soup: points and index triples, vertex i being point i.
+/// It is the package's input form that needs no halfedge data structure (what a mesh file holds,
+/// what numpy arrays hold): `Correspondence_shape<Triangle_soup>` prepares it for matching
+/// directly, and maps between such shapes are vectors of point indices.
+///
+/// The constructor copies the soup and checks what belongs to the soup itself: at least one
+/// vertex and one face, finite coordinates, faces of three distinct vertices in range. What
+/// belongs to the surface (zero-area faces, non-manifold edges and vertices, orientation,
+/// isolated vertices, components) is checked where the soup is prepared (check_triangle_soup(),
+/// Correspondence_shape), with the same messages.
+class Triangle_soup
+{
+public:
+  typedef std::array<double, 3> Point;
+  typedef std::array<int, 3> Triangle;
+
+  /// An empty soup (a shape cannot be prepared from it).
+  Triangle_soup() = default;
+
+  /// Copies `points` and `polygons`.
+  /// \tparam PointRange a random-access range of points whose coordinates are read with `p[0]`,
+  ///   `p[1]`, `p[2]` (CGAL points, `std::array<double, 3>`)
+  /// \tparam PolygonRange a random-access range of faces, each a range of integer vertex indices
+  ///   with `size()` and `operator[]`
+  /// \param origin the name of the soup (a file, "mesh 1") and, for a soup read from a text file,
+  ///   the line of each vertex and face, for the messages
+  /// \throws Invalid_mesh_error naming the first problem, the vertex or face, and where it comes
+  ///   from
+  template <typename PointRange, typename PolygonRange>
+  Triangle_soup(const PointRange& points, const PolygonRange& polygons, Triangle_soup_origin origin = Triangle_soup_origin())
+      : origin_(std::move(origin))
+  {
+    const std::string& label = origin_.name;
+    const std::size_t n = points.size(), nf = polygons.size();
+    if(n == 0) throw Invalid_mesh_error(label + ": the mesh has no vertices");
+    if(nf == 0) throw Invalid_mesh_error(label + ": the mesh has no faces");
+    points_.resize(n);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const auto& p = points[i];
+      points_[i] = {{double(p[0]), double(p[1]), double(p[2])}};
+      if(!std::isfinite(points_[i][0]) || !std::isfinite(points_[i][1]) || !std::isfinite(points_[i][2]))
+      {
+        std::ostringstream s;
+        s << points_[i][0] << " " << points_[i][1] << " " << points_[i][2];
+        throw Invalid_mesh_error(origin_.where_vertex(i) + "vertex " + std::to_string(i) +
+                                 " has a non-finite coordinate (" + s.str() + ")");
+      }
+    }
+    std::size_t non_triangles = 0, first_non_triangle = 0;
+    for(std::size_t f = 0; f < nf; ++f)
+    {
+      const auto& face = polygons[f];
+      for(std::size_t c = 0; c < std::size_t(face.size()); ++c)
+      {
+        const long long v = internal::soup_index(face[c]);
+        if(v < 0 || v >= static_cast<long long>(n))
+          throw Invalid_mesh_error(origin_.where_face(f) + "face " + std::to_string(f) + " refers to vertex " +
+                                   std::to_string(v) + " but the mesh has " + std::to_string(n) + " vertices");
+      }
+      if(face.size() != 3 && non_triangles++ == 0) first_non_triangle = f;
+    }
+    if(non_triangles > 0)
+      throw Invalid_mesh_error(origin_.where_face(first_non_triangle) + std::to_string(non_triangles) + " of " +
+                               std::to_string(nf) + " faces are not triangles (face " +
+                               std::to_string(first_non_triangle) + " has " +
+                               std::to_string(polygons[first_non_triangle].size()) +
+                               " vertices); triangulate the mesh first");
+    if(n > std::size_t(std::numeric_limits<int>::max()) || nf > std::size_t(std::numeric_limits<int>::max() / 3))
+      throw Invalid_mesh_error(label + ": the mesh is too large (" + std::to_string(n) + " vertices, " +
+                               std::to_string(nf) + " faces)");
+    triangles_.resize(nf);
+    for(std::size_t f = 0; f < nf; ++f)
+    {
+      const auto& t = polygons[f];
+      for(int c = 0; c < 3; ++c) triangles_[f][std::size_t(c)] = int(t[std::size_t(c)]);
+      if(t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+        throw Invalid_mesh_error(origin_.where_face(f) + "face " + std::to_string(f) +
+                                 " is degenerate: it repeats vertex " +
+                                 std::to_string(internal::soup_index(t[0] == t[1] || t[0] == t[2] ? t[0] : t[1])));
+    }
+  }
+
+  std::size_t number_of_vertices() const { return points_.size(); }
+  std::size_t number_of_triangles() const { return triangles_.size(); }
+  /// Point i: the position of vertex i.
+  const std::vector<Point>& points() const { return points_; }
+  /// The faces, as indices of points, in the order given.
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  /// Where the soup comes from (its name in messages, and the lines of a text file).
+  const Triangle_soup_origin& origin() const { return origin_; }
+
+private:
+  std::vector<Point> points_;
+  std::vector<Triangle> triangles_;
+  Triangle_soup_origin origin_;
+};
+
+namespace internal {
+
+/// The flat mesh of a soup, checked as a surface with the requirements `req` (vertex i is point
+/// i, face f is triangle f), and its orientation checked (a soup, unlike a halfedge mesh, can
+/// traverse an edge twice in the same direction). Messages name the soup's origin, or `name`
+/// when the origin has the default name. `vertices_out`, when given, receives 0, 1, ..., n - 1.
+inline Indexed_mesh make_soup_indexed_mesh(const Triangle_soup& soup, const Mesh_requirements& req,
+                                           const std::string& name = "mesh",
+                                           std::vector<std::size_t>* vertices_out = nullptr)
+{
+  const std::string& label = soup.origin().name == Triangle_soup_origin().name ? name : soup.origin().name;
+  Indexed_mesh m;
+  const std::size_t n = soup.number_of_vertices(), nf = soup.number_of_triangles();
+  m.points.resize(Eigen::Index(n), 3);
+  for(std::size_t i = 0; i < n; ++i)
+    for(int c = 0; c < 3; ++c) m.points(Eigen::Index(i), c) = soup.points()[i][std::size_t(c)];
+  m.triangles.resize(Eigen::Index(nf), 3);
+  for(std::size_t f = 0; f < nf; ++f)
+    for(int c = 0; c < 3; ++c) m.triangles(Eigen::Index(f), c) = soup.triangles()[f][std::size_t(c)];
+  finalize_indexed_mesh(m, req, label);
+  check_soup_orientation(m, mesh_label(label));
+  if(vertices_out)
+  {
+    vertices_out->resize(n);
+    for(std::size_t i = 0; i < n; ++i) (*vertices_out)[i] = i;
+  }
+  return m;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Checks that a triangle soup is a mesh the package can match: at least one vertex and one
 /// face, finite coordinates, faces of three distinct vertices in range and of non-zero area, a
 /// manifold (every edge in at most two faces, one fan of faces around every vertex),
 /// consistently oriented surface with no isolated vertex and one connected component.
 ///
-/// \tparam PointRange a random-access range of points whose coordinates are read with `p[0]`,
-///   `p[1]`, `p[2]` (CGAL points, `std::array<double, 3>`)
-/// \tparam PolygonRange a random-access range of faces, each a range of integer vertex indices
-///   with `size()` and `operator[]`
+/// \tparam PointRange, PolygonRange as for Triangle_soup
 /// \throws Invalid_mesh_error naming the first problem, the vertex or face, and where they come
 ///   from (`origin`: a name, and the lines of a text file)
 template <typename PointRange, typename PolygonRange>
 void check_triangle_soup(const PointRange& points, const PolygonRange& polygons,
                          const Triangle_soup_origin& origin = Triangle_soup_origin())
 {
-  const std::string& label = origin.name;
-  const std::size_t n = points.size(), nf = polygons.size();
-  if(n == 0) throw Invalid_mesh_error(label + ": the mesh has no vertices");
-  if(nf == 0) throw Invalid_mesh_error(label + ": the mesh has no faces");
-  for(std::size_t i = 0; i < n; ++i)
-  {
-    const auto& p = points[i];
-    if(!std::isfinite(double(p[0])) || !std::isfinite(double(p[1])) || !std::isfinite(double(p[2])))
-    {
-      std::ostringstream s;
-      s << double(p[0]) << " " << double(p[1]) << " " << double(p[2]);
-      throw Invalid_mesh_error(origin.where_vertex(i) + "vertex " + std::to_string(i) +
-                               " has a non-finite coordinate (" + s.str() + ")");
-    }
-  }
-  std::size_t non_triangles = 0, first_non_triangle = 0;
-  for(std::size_t f = 0; f < nf; ++f)
-  {
-    const auto& face = polygons[f];
-    for(std::size_t c = 0; c < std::size_t(face.size()); ++c)
-    {
-      const long long v = internal::soup_index(face[c]);
-      if(v < 0 || v >= static_cast<long long>(n))
-        throw Invalid_mesh_error(origin.where_face(f) + "face " + std::to_string(f) + " refers to vertex " +
-                                 std::to_string(v) + " but the mesh has " + std::to_string(n) + " vertices");
-    }
-    if(face.size() != 3 && non_triangles++ == 0) first_non_triangle = f;
-  }
-  if(non_triangles > 0)
-    throw Invalid_mesh_error(origin.where_face(first_non_triangle) + std::to_string(non_triangles) + " of " +
-                             std::to_string(nf) + " faces are not triangles (face " +
-                             std::to_string(first_non_triangle) + " has " +
-                             std::to_string(polygons[first_non_triangle].size()) +
-                             " vertices); triangulate the mesh first");
-  if(n > std::size_t(std::numeric_limits<int>::max()) || nf > std::size_t(std::numeric_limits<int>::max() / 3))
-    throw Invalid_mesh_error(label + ": the mesh is too large (" + std::to_string(n) + " vertices, " +
-                             std::to_string(nf) + " faces)");
-  internal::Indexed_mesh m;
-  m.points.resize(Eigen::Index(n), 3);
-  for(std::size_t i = 0; i < n; ++i)
-    for(int c = 0; c < 3; ++c) m.points(Eigen::Index(i), c) = double(points[i][c]);
-  m.triangles.resize(Eigen::Index(nf), 3);
-  for(std::size_t f = 0; f < nf; ++f)
-  {
-    const auto& t = polygons[f];
-    for(int c = 0; c < 3; ++c) m.triangles(Eigen::Index(f), c) = int(t[std::size_t(c)]);
-    if(t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-      throw Invalid_mesh_error(origin.where_face(f) + "face " + std::to_string(f) + " is degenerate: it repeats vertex " +
-                               std::to_string(internal::soup_index(t[0] == t[1] || t[0] == t[2] ? t[0] : t[1])));
-  }
   internal::Mesh_requirements req;
   req.allow_isolated_vertices = false;
   req.allow_several_components = false;
-  internal::finalize_indexed_mesh(m, req, label);
-  internal::check_soup_orientation(m, label);
+  internal::make_soup_indexed_mesh(Triangle_soup(points, polygons, origin), req, origin.name);
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
