@@ -47,12 +47,12 @@ struct Bench_options
 /// A prepared dataset shape (the library's Correspondence_shape) with its ground truth.
 struct Bench_shape
 {
-  Mesh mesh;
+  smc::Triangle_soup mesh;
   std::unique_ptr<Shape> shape;
   std::unique_ptr<Evaluator> evaluator;
   Vertex_map vts, sym;  ///< sym empty when the dataset has no .sym.vts
   double preparation_seconds = 0;
-  std::size_t number_of_vertices() const { return num_vertices(mesh); }
+  std::size_t number_of_vertices() const { return mesh.number_of_vertices(); }
 };
 
 /// Prepared shapes shared by the jobs, at most `capacity` of them kept once unused (least
@@ -502,7 +502,7 @@ int run_bench(int argc, char** argv)
                     [&](const std::string& name) {
                       std::shared_ptr<Bench_shape> s(new Bench_shape);
                       const Stopwatch t;
-                      s->mesh = read_triangle_mesh(mesh_file(name));
+                      s->mesh = read_mesh_soup(mesh_file(name));
                       s->shape.reset(new Shape(s->mesh, smc::parameters::matching_settings(settings), name));
                       s->preparation_seconds = t.seconds();
                       const std::size_t n = s->number_of_vertices();

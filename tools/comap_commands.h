@@ -21,46 +21,19 @@
 
 namespace comap {
 
-typedef smc::Correspondence_shape<Mesh, Concurrency> Shape;
+typedef smc::Correspondence_shape<smc::Triangle_soup, Concurrency> Shape;
 typedef smc::Map_evaluator<Concurrency> Evaluator;
 
-typedef Mesh::Property_map<Mesh::Vertex_index, Mesh::Vertex_index> Vertex_vertex_map;
-
-/// A vertex-to-vertex property map of `source` holding `map` (indices of `target`'s vertices).
-inline Vertex_vertex_map vertex_property_map(Mesh& source, const std::string& name, const Vertex_map& map)
-{
-  Vertex_vertex_map p = source.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>(name).first;
-  for(std::size_t i = 0; i < map.size(); ++i) p[Mesh::Vertex_index(Mesh::size_type(i))] = Mesh::Vertex_index(Mesh::size_type(map[i]));
-  return p;
-}
-
-inline Vertex_map index_map(const Mesh& source, const Vertex_vertex_map& p)
-{
-  Vertex_map out(num_vertices(source));
-  for(Mesh::Vertex_index v : source.vertices()) out[v.idx()] = p[v].idx();
-  return out;
-}
-
-/// Runs match_shapes() (the overload on meshes) on two meshes read from files, with the initial maps and landmarks of the
-/// options when given; the maps are returned as indices.
+/// Runs match_shapes() (the overload on triangle soups) on two meshes read from files, with the
+/// initial maps of the options when given (the landmarks are in `np`).
 template <typename Parameters>
-smc::Matching_result match_meshes(Mesh& m1, Mesh& m2, const Vertex_map* init_12, const Vertex_map* init_21,
-                                  const Parameters& np, Vertex_map& map_12, Vertex_map& map_21)
+smc::Matching_result match_soups(const smc::Triangle_soup& m1, const smc::Triangle_soup& m2, const Vertex_map* init_12,
+                                 const Vertex_map* init_21, const Parameters& np, Vertex_map& map_12,
+                                 Vertex_map& map_21)
 {
-  Vertex_vertex_map out12 = m1.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>("v:comap_out").first;
-  Vertex_vertex_map out21 = m2.add_property_map<Mesh::Vertex_index, Mesh::Vertex_index>("v:comap_out").first;
-  smc::Matching_result r;
   if(init_12)
-  {
-    const Vertex_vertex_map in12 = vertex_property_map(m1, "v:comap_in", *init_12);
-    const Vertex_vertex_map in21 = vertex_property_map(m2, "v:comap_in", *init_21);
-    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, smc::parameters::initial_maps(in12, in21, np));
-  }
-  else
-    r = smc::match_shapes<Concurrency>(m1, m2, out12, out21, np);
-  map_12 = index_map(m1, out12);
-  map_21 = index_map(m2, out21);
-  return r;
+    return smc::match_shapes<Concurrency>(m1, m2, map_12, map_21, smc::parameters::initial_maps(*init_12, *init_21, np));
+  return smc::match_shapes<Concurrency>(m1, m2, map_12, map_21, np);
 }
 
 /// Options every subcommand takes.

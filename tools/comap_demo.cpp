@@ -337,8 +337,8 @@ int run_demo(int argc, char** argv)
   Vertex_map m12, m21;
   // The meshes as written (the files round their coordinates): the maps are those of
   // `comap match` on the two files.
-  Mesh a = read_triangle_mesh(out + "/" + source_name), b = read_triangle_mesh(out + "/" + target_name);
-  const smc::Matching_result r = match_meshes(
+  const smc::Triangle_soup a = read_mesh_soup(out + "/" + source_name), b = read_mesh_soup(out + "/" + target_name);
+  const smc::Matching_result r = match_soups(
       a, b, nullptr, nullptr, smc::parameters::matching_settings(settings, smc::parameters::visitor(std::ref(visitor))),
       m12, m21);
   const Vertex_map& initial12 = r.unrefined_map_12;
@@ -351,11 +351,11 @@ int run_demo(int argc, char** argv)
   const Quality after = evaluate(on_source, on_target, m12, m21, gt12, gt21);
 
   // ------------------------------------------------------------ pictures
-  const std::vector<Color> colors = coordinate_colors(target);
-  write_colored_ply(out + "/target_colors.ply", target, colors);
-  write_colored_ply(out + "/source_final.ply", source, pull_colors(colors, m12));
-  write_colored_ply(out + "/source_initial.ply", source, pull_colors(colors, initial12));
-  write_colored_ply(out + "/source_ground_truth.ply", source, pull_colors(colors, gt12));
+  const std::vector<Color> colors = coordinate_colors(b);
+  write_colored_ply(out + "/target_colors.ply", b, colors);
+  write_colored_ply(out + "/source_final.ply", a, pull_colors(colors, m12));
+  write_colored_ply(out + "/source_initial.ply", a, pull_colors(colors, initial12));
+  write_colored_ply(out + "/source_ground_truth.ply", a, pull_colors(colors, gt12));
   Plot errors;
   errors.title = "Cumulative geodesic error, both directions, all vertices";
   errors.x_label = "geodesic error / sqrt(area)";

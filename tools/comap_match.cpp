@@ -74,13 +74,13 @@ int run_match(int argc, char** argv)
   const Progress progress(common.quiet);
 
   Stopwatch watch;
-  Mesh m1 = read_triangle_mesh(files[0]);
-  Mesh m2 = read_triangle_mesh(files[1]);
+  const smc::Triangle_soup m1 = read_mesh_soup(files[0]);
+  const smc::Triangle_soup m2 = read_mesh_soup(files[1]);
   const double load_seconds = watch.seconds();
-  const std::size_t n1 = num_vertices(m1), n2 = num_vertices(m2);
-  progress.line("loaded " + files[0] + " (" + std::to_string(n1) + " vertices, " + std::to_string(num_faces(m1)) +
-                " triangles) and " + files[1] + " (" + std::to_string(n2) + " vertices, " +
-                std::to_string(num_faces(m2)) + " triangles)");
+  const std::size_t n1 = m1.number_of_vertices(), n2 = m2.number_of_vertices();
+  progress.line("loaded " + files[0] + " (" + std::to_string(n1) + " vertices, " +
+                std::to_string(m1.number_of_triangles()) + " triangles) and " + files[1] + " (" +
+                std::to_string(n2) + " vertices, " + std::to_string(m2.number_of_triangles()) + " triangles)");
   std::vector<std::pair<std::size_t, std::size_t> > landmarks;
   if(!landmarks_file.empty()) landmarks = read_landmarks(landmarks_file, index_base, n1, n2);
   Vertex_map given_12, given_21;
@@ -95,7 +95,7 @@ int run_match(int argc, char** argv)
       settings, smc::parameters::landmarks(landmarks, smc::parameters::visitor(std::ref(visitor))));
   Vertex_map map_12, map_21;
   const smc::Matching_result r =
-      match_meshes(m1, m2, given ? &given_12 : nullptr, given ? &given_21 : nullptr, np, map_12, map_21);
+      match_soups(m1, m2, given ? &given_12 : nullptr, given ? &given_21 : nullptr, np, map_12, map_21);
   // The maps and the statistics are all written before the first of them replaces its file.
   smc::Atomic_output_file file_12(out_12), file_21(out_21);
   smc::write_vertex_indices(file_12.stream(), map_12, index_base);
@@ -201,8 +201,8 @@ int run_eval(int argc, char** argv)
   const Thread_limit limit(common.threads);
   const Progress progress(common.quiet || json_output);
 
-  const Mesh ms = read_triangle_mesh(source), mt = read_triangle_mesh(target);
-  const std::size_t ns = num_vertices(ms), nt = num_vertices(mt);
+  const smc::Triangle_soup ms = read_mesh_soup(source), mt = read_mesh_soup(target);
+  const std::size_t ns = ms.number_of_vertices(), nt = mt.number_of_vertices();
   const Vertex_map map_12 = read_vertex_map(map_file, index_base, ns, nt);
   const Vertex_map gs = read_correspondences(gt_source, index_base, ns);
   const Vertex_map gt = read_correspondences(gt_target, index_base, nt);

@@ -28,6 +28,11 @@ Mesh read_triangle_mesh(const std::string& file)
   return mesh;
 }
 
+smc::Triangle_soup read_mesh_soup(const std::string& file)
+{
+  return smc::read_triangle_soup(file);
+}
+
 Vertex_map read_vertex_map(const std::string& file, int index_base, std::size_t source_vertices,
                            std::size_t target_vertices)
 {
@@ -95,31 +100,26 @@ void write_vertex_maps(const std::string& file_12, const Vertex_map& map_12, con
   commit_outputs({&out_12, &out_21});
 }
 
-void write_colored_ply(const std::string& file, const Mesh& mesh, const std::vector<Color>& colors)
+void write_colored_ply(const std::string& file, const smc::Triangle_soup& mesh, const std::vector<Color>& colors)
 {
   smc::Atomic_output_file atomic(file);
   std::ostream& out = atomic.stream();
   out << "ply\nformat ascii 1.0\ncomment written by comap (Surface_mesh_correspondence)\n"
-      << "element vertex " << num_vertices(mesh) << "\n"
+      << "element vertex " << mesh.number_of_vertices() << "\n"
       << "property float x\nproperty float y\nproperty float z\n"
       << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-      << "element face " << num_faces(mesh) << "\nproperty list uchar int vertex_indices\nend_header\n";
+      << "element face " << mesh.number_of_triangles() << "\nproperty list uchar int vertex_indices\nend_header\n";
   auto byte = [](double c) { return static_cast<int>(std::lround(255.0 * std::min(1.0, std::max(0.0, c)))); };
   char line[160];
-  for(Mesh::Vertex_index v : mesh.vertices())
+  for(std::size_t v = 0; v < mesh.number_of_vertices(); ++v)
   {
-    const Point& p = mesh.point(v);
-    const Color& c = colors[v.idx()];
-    std::snprintf(line, sizeof(line), "%.7g %.7g %.7g %d %d %d\n", p.x(), p.y(), p.z(), byte(c[0]), byte(c[1]),
+    const smc::Triangle_soup::Point& p = mesh.points()[v];
+    const Color& c = colors[v];
+    std::snprintf(line, sizeof(line), "%.7g %.7g %.7g %d %d %d\n", p[0], p[1], p[2], byte(c[0]), byte(c[1]),
                   byte(c[2]));
     out << line;
   }
-  for(Mesh::Face_index f : mesh.faces())
-  {
-    out << "3";
-    for(Mesh::Vertex_index v : vertices_around_face(mesh.halfedge(f), mesh)) out << ' ' << v.idx();
-    out << '\n';
-  }
+  for(const smc::Triangle_soup::Triangle& t : mesh.triangles()) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
   commit_outputs({&atomic});
 }
 

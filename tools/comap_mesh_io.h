@@ -11,6 +11,7 @@
 #include "comap_common.h"
 
 #include <CGAL/Surface_mesh_correspondence/map_io.h>
+#include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
 #include <array>
 #include <initializer_list>
@@ -31,6 +32,12 @@ typedef std::array<double, 3> Color;
 ///   or inconsistently oriented faces, isolated vertices, several connected components), each
 ///   with a message that starts with the file name.
 Mesh read_triangle_mesh(const std::string& file);
+
+/// Reads a mesh file as a triangle soup (point i is the file's i-th point), checked for what a soup
+/// itself can get wrong; the shape made from it checks the surface.
+/// \throws CGAL::Surface_mesh_correspondence::IO_error or Invalid_mesh_error, naming the file
+///   (and the line for OFF and OBJ text files).
+CGAL::Surface_mesh_correspondence::Triangle_soup read_mesh_soup(const std::string& file);
 
 /// Reads a vertex map (one index per line) and checks it against the vertex counts of its
 /// source and target meshes. \throws IO_error, Invalid_map_error naming the file.
@@ -75,7 +82,8 @@ void write_vertex_maps(const std::string& file_12, const Vertex_map& map_12, con
 
 /// Writes `mesh` as an ASCII PLY with one colour per vertex (red, green, blue as uchar), which
 /// MeshLab, Blender and ParaView display directly.
-void write_colored_ply(const std::string& file, const Mesh& mesh, const std::vector<Color>& colors);
+void write_colored_ply(const std::string& file, const CGAL::Surface_mesh_correspondence::Triangle_soup& mesh,
+                       const std::vector<Color>& colors);
 
 /// Writes `mesh` as OFF.
 void write_off(const std::string& file, const Mesh& mesh);

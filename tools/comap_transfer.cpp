@@ -29,14 +29,12 @@ struct Box
   double size(int a) const { return std::max(hi[a] - lo[a], 1e-300); }
 };
 
-Box bounding_box(const Mesh& mesh)
+Box bounding_box(const smc::Triangle_soup& mesh)
 {
   Box b;
   bool first = true;
-  for(Mesh::Vertex_index v : mesh.vertices())
+  for(const smc::Triangle_soup::Point& c : mesh.points())
   {
-    const Point& p = mesh.point(v);
-    const double c[3] = {p.x(), p.y(), p.z()};
     for(int a = 0; a < 3; ++a)
     {
       b.lo[a] = first ? c[a] : std::min(b.lo[a], c[a]);
@@ -51,18 +49,16 @@ Box bounding_box(const Mesh& mesh)
 
 } // namespace
 
-std::vector<Color> coordinate_colors(const Mesh& mesh)
+std::vector<Color> coordinate_colors(const smc::Triangle_soup& mesh)
 {
   const Box b = bounding_box(mesh);
   const double extent = b.size(b.longest);
-  std::vector<Color> colors(num_vertices(mesh));
-  for(Mesh::Vertex_index v : mesh.vertices())
+  std::vector<Color> colors(mesh.number_of_vertices());
+  for(std::size_t v = 0; v < colors.size(); ++v)
   {
-    const Point& p = mesh.point(v);
-    const double c[3] = {p.x(), p.y(), p.z()};
+    const smc::Triangle_soup::Point& c = mesh.points()[v];
     const double band = 0.8 + 0.2 * std::sin(2 * CGAL_PI * 6 * (c[b.longest] - b.lo[b.longest]) / extent);
-    Color& out = colors[v.idx()];
-    for(int a = 0; a < 3; ++a) out[a] = (0.1 + 0.8 * (c[a] - b.lo[a]) / b.size(a)) * band;
+    for(int a = 0; a < 3; ++a) colors[v][a] = (0.1 + 0.8 * (c[a] - b.lo[a]) / b.size(a)) * band;
   }
   return colors;
 }
@@ -123,19 +119,18 @@ Texture read_png(const std::string& file)
 #endif
 }
 
-std::vector<Color> texture_colors(const Mesh& mesh, const Texture& texture)
+std::vector<Color> texture_colors(const smc::Triangle_soup& mesh, const Texture& texture)
 {
   const Box b = bounding_box(mesh);
   const int a = b.longest, b1 = (a + 1) % 3, b2 = (a + 2) % 3;
   const double c1 = 0.5 * (b.lo[b1] + b.hi[b1]), c2 = 0.5 * (b.lo[b2] + b.hi[b2]);
-  std::vector<Color> colors(num_vertices(mesh));
-  for(Mesh::Vertex_index v : mesh.vertices())
+  std::vector<Color> colors(mesh.number_of_vertices());
+  for(std::size_t v = 0; v < colors.size(); ++v)
   {
-    const Point& p = mesh.point(v);
-    const double c[3] = {p.x(), p.y(), p.z()};
+    const smc::Triangle_soup::Point& c = mesh.points()[v];
     const double u = (std::atan2(c[b2] - c2, c[b1] - c1) + CGAL_PI) / (2 * CGAL_PI);
     const double t = (c[a] - b.lo[a]) / b.size(a);
-    colors[v.idx()] = texture.sample(u, t);
+    colors[v] = texture.sample(u, t);
   }
   return colors;
 }
@@ -187,8 +182,8 @@ int run_transfer(int argc, char** argv)
                         {{"--out", out}, {"the target's output (from --out)", out_target}});
   check_writable(out);
   const Progress progress(common.quiet);
-  const Mesh ms = read_triangle_mesh(source), mt = read_triangle_mesh(target);
-  const Vertex_map map_12 = read_vertex_map(map_file, index_base, num_vertices(ms), num_vertices(mt));
+  const smc::Triangle_soup ms = read_mesh_soup(source), mt = read_mesh_soup(target);
+  const Vertex_map map_12 = read_vertex_map(map_file, index_base, ms.number_of_vertices(), mt.number_of_vertices());
   std::vector<Color> colors;
   if(texture_file.empty())
     colors = coordinate_colors(mt);
@@ -201,8 +196,8 @@ int run_transfer(int argc, char** argv)
   }
   write_colored_ply(out, ms, pull_colors(colors, map_12));
   write_colored_ply(out_target, mt, colors);
-  std::cout << "wrote " << out << " (source, " << num_vertices(ms) << " vertices, colours pulled through " << map_file
-            << ") and " << out_target << " (target, " << num_vertices(mt) << " vertices, "
+  std::cout << "wrote " << out << " (source, " << ms.number_of_vertices() << " vertices, colours pulled through "
+            << map_file << ") and " << out_target << " (target, " << mt.number_of_vertices() << " vertices, "
             << (texture_file.empty() ? std::string("coordinate colours") : "texture " + texture_file) << ")\n";
   return 0;
 }

@@ -25,7 +25,7 @@
 namespace comap {
 
 /// The smooth coordinate colours of every vertex (see above).
-std::vector<Color> coordinate_colors(const Mesh& mesh);
+std::vector<Color> coordinate_colors(const CGAL::Surface_mesh_correspondence::Triangle_soup& mesh);
 
 /// An RGB image, rows from top to bottom.
 struct Texture
@@ -43,7 +43,7 @@ bool has_png_support();
 Texture read_png(const std::string& file);
 
 /// The colours of the texture wrapped around the mesh by the cylindrical projection (see above).
-std::vector<Color> texture_colors(const Mesh& mesh, const Texture& texture);
+std::vector<Color> texture_colors(const CGAL::Surface_mesh_correspondence::Triangle_soup& mesh, const Texture& texture);
 
 /// The colours of the source pulled through `map_12`: source vertex i gets the colour of target
 /// vertex map_12[i].

@@ -15,7 +15,6 @@
 #include <CGAL/Surface_mesh_correspondence/settings_io.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -45,9 +44,6 @@ namespace smc = CGAL::Surface_mesh_correspondence;
 namespace {
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
-typedef CGAL::Surface_mesh<Kernel::Point_3> Mesh;
-typedef Mesh::Vertex_index Vertex;
-typedef Mesh::Property_map<Vertex, Vertex> Vertex_vertex_map;
 
 #ifdef CGAL_LINKED_WITH_TBB
 typedef CGAL::Parallel_tag Concurrency;
@@ -58,47 +54,35 @@ typedef CGAL::Sequential_tag Concurrency;
 typedef py::array_t<double, py::array::c_style | py::array::forcecast> Points_array;
 typedef py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> Index_array;
 
-/// The mesh of points (n, 3) and faces (m, 3), checked by the library (the Python half has
-/// checked the shapes and types); vertex i is point i.
-Mesh mesh_of_arrays(const Points_array& points, const Index_array& faces, const std::string& name)
+/// The triangle soup of points (n, 3) and faces (m, 3), checked by the library (the Python half
+/// has checked the shapes and types); vertex i is point i.
+smc::Triangle_soup soup_of_arrays(const Points_array& points, const Index_array& faces, const std::string& name)
 {
   const auto p = points.unchecked<2>();
   const auto f = faces.unchecked<2>();
-  std::vector<Kernel::Point_3> soup_points;
-  soup_points.reserve(std::size_t(p.shape(0)));
-  for(py::ssize_t i = 0; i < p.shape(0); ++i) soup_points.emplace_back(p(i, 0), p(i, 1), p(i, 2));
+  std::vector<std::array<double, 3> > soup_points(std::size_t(p.shape(0)));
+  for(py::ssize_t i = 0; i < p.shape(0); ++i) soup_points[std::size_t(i)] = {{p(i, 0), p(i, 1), p(i, 2)}};
   std::vector<std::array<std::int64_t, 3> > soup_faces(std::size_t(f.shape(0)));
-  for(py::ssize_t i = 0; i < f.shape(0); ++i) soup_faces[std::size_t(i)] = {f(i, 0), f(i, 1), f(i, 2)};
-  Mesh mesh;
-  smc::triangle_soup_to_mesh(soup_points, soup_faces, mesh, smc::Triangle_soup_origin(name));
-  return mesh;
+  for(py::ssize_t i = 0; i < f.shape(0); ++i) soup_faces[std::size_t(i)] = {{f(i, 0), f(i, 1), f(i, 2)}};
+  return smc::Triangle_soup(soup_points, soup_faces, smc::Triangle_soup_origin(name));
 }
 
-/// A vertex-to-vertex property map of `source` holding `map` (indices of the target's vertices,
-/// checked by the library: its length and range).
-Vertex_vertex_map vertex_map(Mesh& source, const std::string& name, const Index_array& map, std::size_t targets,
-                             const std::string& what)
+/// `map` as indices, checked against the vertex counts of its source and target meshes.
+smc::Vertex_index_map_vector checked_map(const Index_array& map, std::size_t sources, std::size_t targets,
+                                         const std::string& what)
 {
   const auto m = map.unchecked<1>();
-  if(std::size_t(m.shape(0)) != num_vertices(source))
+  if(std::size_t(m.shape(0)) != sources)
     throw smc::Invalid_map_error(what + " has " + std::to_string(m.shape(0)) + " entries but its source mesh has " +
-                                 std::to_string(num_vertices(source)) + " vertices");
-  Vertex_vertex_map p = source.add_property_map<Vertex, Vertex>(name).first;
+                                 std::to_string(sources) + " vertices");
+  smc::Vertex_index_map_vector out(sources);
   for(py::ssize_t i = 0; i < m.shape(0); ++i)
   {
     if(m(i) < 0 || std::size_t(m(i)) >= targets)
       throw smc::Invalid_map_error(what + ": entry " + std::to_string(i) + " is " + std::to_string(m(i)) +
                                    ", not a vertex of its target mesh (" + std::to_string(targets) + " vertices)");
-    p[Vertex(Mesh::size_type(i))] = Vertex(Mesh::size_type(m(i)));
+    out[std::size_t(i)] = std::size_t(m(i));
   }
-  return p;
-}
-
-py::array_t<std::int64_t> index_array(const Mesh& source, const Vertex_vertex_map& p)
-{
-  py::array_t<std::int64_t> out(py::ssize_t(num_vertices(source)));
-  auto o = out.mutable_unchecked<1>();
-  for(Vertex v : source.vertices()) o(py::ssize_t(v.idx())) = std::int64_t(p[v].idx());
   return out;
 }
 
@@ -372,28 +356,27 @@ py::tuple match(const Points_array& v1, const Index_array& f1, const Points_arra
                 const std::optional<std::pair<Index_array, Index_array> >& init, const std::optional<Index_array>& landmarks,
                 const Settings_dict& settings_dict, int threads, py::object progress)
 {
-  Mesh m1 = mesh_of_arrays(v1, f1, "mesh 1");
-  Mesh m2 = mesh_of_arrays(v2, f2, "mesh 2");
-  const std::size_t n1 = num_vertices(m1), n2 = num_vertices(m2);
+  const smc::Triangle_soup m1 = soup_of_arrays(v1, f1, "mesh 1");
+  const smc::Triangle_soup m2 = soup_of_arrays(v2, f2, "mesh 2");
+  const std::size_t n1 = m1.number_of_vertices(), n2 = m2.number_of_vertices();
   const std::vector<std::pair<std::size_t, std::size_t> > pairs = landmark_pairs(landmarks);
   const smc::Matching_settings settings = matching_settings(settings_dict);
-  Vertex_vertex_map out12 = m1.add_property_map<Vertex, Vertex>("v:comap_out").first;
-  Vertex_vertex_map out21 = m2.add_property_map<Vertex, Vertex>("v:comap_out").first;
+  smc::Vertex_index_map_vector x12, x21;
   Python_visitor visitor(std::move(progress));
   const auto np = smc::parameters::matching_settings(
       settings, smc::parameters::landmarks(pairs, smc::parameters::visitor(std::ref(visitor))));
   smc::Matching_result r;
   if(init)
   {
-    const Vertex_vertex_map in12 = vertex_map(m1, "v:comap_in", init->first, n2, "init[0] (the map 1 -> 2)");
-    const Vertex_vertex_map in21 = vertex_map(m2, "v:comap_in", init->second, n1, "init[1] (the map 2 -> 1)");
+    const smc::Vertex_index_map_vector a = checked_map(init->first, n1, n2, "init[0] (the map 1 -> 2)"),
+                                       b = checked_map(init->second, n2, n1, "init[1] (the map 2 -> 1)");
     r = run_from_python(visitor, threads, [&] {
-      return smc::match_shapes<Concurrency>(m1, m2, out12, out21, smc::parameters::initial_maps(in12, in21, np));
+      return smc::match_shapes<Concurrency>(m1, m2, x12, x21, smc::parameters::initial_maps(a, b, np));
     });
   }
   else
-    r = run_from_python(visitor, threads, [&] { return smc::match_shapes<Concurrency>(m1, m2, out12, out21, np); });
-  return py::make_tuple(index_array(m1, out12), index_array(m2, out21), result_dict(r));
+    r = run_from_python(visitor, threads, [&] { return smc::match_shapes<Concurrency>(m1, m2, x12, x21, np); });
+  return py::make_tuple(index_array(x12), index_array(x21), result_dict(r));
 }
 
 // ------------------------------------------------------------------------------ prepared shapes
@@ -413,17 +396,17 @@ smc::Vertex_index_map_vector index_vector(const Index_array& a, const std::strin
 }
 
 
-typedef smc::Correspondence_shape<Mesh, Concurrency> Correspondence_shape;
+typedef smc::Correspondence_shape<smc::Triangle_soup, Concurrency> Correspondence_shape;
 
 /// A shape prepared once (spectrum, descriptors, distance oracle, the initialisation's data) for
 /// matching against many.
 struct Shape
 {
-  Mesh mesh;
+  smc::Triangle_soup mesh;
   std::unique_ptr<Correspondence_shape> shape;
 
   Shape(const Points_array& v, const Index_array& f, const std::string& n, const Settings_dict& settings, int threads)
-      : mesh(mesh_of_arrays(v, f, n))
+      : mesh(soup_of_arrays(v, f, n))
   {
     const smc::Matching_settings s = matching_settings(settings);
     Python_visitor visitor{py::none()};
@@ -543,7 +526,7 @@ py::array_t<double> geodesic_errors(const Points_array& v, const Index_array& f,
                                     const Index_array& gt_source, const Index_array& gt_target,
                                     const std::optional<Index_array>& gt_symmetric)
 {
-  const Mesh target = mesh_of_arrays(v, f, "the target mesh");
+  const smc::Triangle_soup target = soup_of_arrays(v, f, "the target mesh");
   const smc::Vertex_index_map_vector m = index_vector(map, "map"), s = index_vector(gt_source, "gt_source"),
                                      t = index_vector(gt_target, "gt_target");
   smc::Vertex_index_map_vector sym;
@@ -560,7 +543,7 @@ py::array_t<double> geodesic_errors(const Points_array& v, const Index_array& f,
 py::array_t<double> cycle_errors(const Points_array& v, const Index_array& f, const Index_array& map_12,
                                  const Index_array& map_21)
 {
-  const Mesh source = mesh_of_arrays(v, f, "the source mesh");
+  const smc::Triangle_soup source = soup_of_arrays(v, f, "the source mesh");
   const smc::Vertex_index_map_vector a = index_vector(map_12, "map_12"), b = index_vector(map_21, "map_21");
   smc::Cycle_consistency c;
   {
