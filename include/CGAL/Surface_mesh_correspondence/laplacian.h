@@ -10,6 +10,7 @@
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/intrinsic_delaunay.h>
+#include <CGAL/Surface_mesh_correspondence/internal/tufted_cover.h>
 #include <CGAL/Surface_mesh_correspondence/parameters.h>
 
 #include <Eigen/Core>
@@ -92,6 +93,30 @@ inline Laplace_beltrami_matrices laplace_beltrami_matrices(const Indexed_mesh& m
   Laplace_beltrami_matrices out;
   if(use_intrinsic_delaunay) out.number_of_flips = make_intrinsic_delaunay(t);
   out.stiffness_matrix = cotangent_stiffness_matrix(t);
+  out.mass = lumped_mass(m);
+  const int n = m.number_of_vertices();
+  out.mass_matrix.resize(n, n);
+  out.mass_matrix.reserve(Eigen::VectorXi::Ones(n));
+  for(int i = 0; i < n; ++i) out.mass_matrix.insert(i, i) = out.mass[i];
+  out.mass_matrix.makeCompressed();
+  return out;
+}
+
+/// The tufted Laplacian of Sharp and Crane (2020): L and M of an indexed mesh that may have
+/// non-manifold edges and vertices, from the intrinsic Delaunay triangulation of its tufted cover
+/// (tufted_cover()): L is half the cover's cotangent matrix (the cover has every triangle twice),
+/// expressed on the mesh's vertices; M is the lumped mass of the input triangles. Symmetric,
+/// positive semi-definite, every off-diagonal entry non-positive, one zero eigenvalue per
+/// component; on a closed manifold mesh it is the intrinsic Delaunay Laplacian
+/// (laplace_beltrami_matrices() with `use_intrinsic_delaunay`). `number_of_flips` counts the flips
+/// on the cover.
+inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m)
+{
+  Intrinsic_triangulation t = tufted_cover(m);
+  Laplace_beltrami_matrices out;
+  out.number_of_flips = make_intrinsic_delaunay(t);
+  out.stiffness_matrix = 0.5 * cotangent_stiffness_matrix(t);
+  out.stiffness_matrix.makeCompressed();
   out.mass = lumped_mass(m);
   const int n = m.number_of_vertices();
   out.mass_matrix.resize(n, n);

@@ -38,6 +38,9 @@ struct Mesh_requirements
   bool allow_isolated_vertices = false;
   bool allow_several_components = true;
   bool allow_boundary = true;
+  /// Edges in more than two triangles and vertices joining several fans of triangles (what the
+  /// tufted Laplacian handles); the neighbours are then the vertices sharing an edge.
+  bool allow_non_manifold = false;
 };
 
 /// Flat copy of a triangle mesh. Vertex indices are those of the mesh's vertex index map.
@@ -181,7 +184,7 @@ inline void check_link_connected(int v, const std::vector<std::array<int, 2> >& 
 /// (interior edge) in the link of v, and the link is connected. `ring` and `link` are workspaces.
 inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& label, std::vector<int>& ring,
                             std::vector<std::array<int, 2> >& link, std::vector<int>& unique_ring,
-                            int& boundary_edges2)
+                            int& boundary_edges2, bool allow_non_manifold = false)
 {
   ring.clear();
   link.clear();
@@ -202,7 +205,7 @@ inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& lab
     std::size_t e = k;
     while(e < ring.size() && ring[e] == ring[k]) ++e;
     const std::size_t multiplicity = e - k;
-    if(multiplicity > 2)
+    if(multiplicity > 2 && !allow_non_manifold)
       throw Invalid_mesh_error(label + " is not manifold: the edge (" + std::to_string(v) + ", " +
                                std::to_string(ring[k]) + ") is shared by " + std::to_string(multiplicity) +
                                " faces");
@@ -211,7 +214,7 @@ inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& lab
     k = e;
   }
   // The link must be connected (else v is a pinched, non-manifold vertex).
-  check_link_connected(v, link, unique_ring, label);
+  if(!allow_non_manifold) check_link_connected(v, link, unique_ring, label);
 }
 
 /// Fills the one-ring neighbours (CSR) and the number of boundary edges. Manifoldness: around
@@ -234,7 +237,7 @@ inline void fill_neighbors(Indexed_mesh& m, const Mesh_requirements& req, const 
                                  " is isolated (it belongs to no face)");
       continue;
     }
-    vertex_one_ring(m, v, label, ring, link, rings[v], boundary_edges2);
+    vertex_one_ring(m, v, label, ring, link, rings[v], boundary_edges2, req.allow_non_manifold);
     m.neighbor_offsets[v + 1] = static_cast<int>(rings[v].size());
   }
   std::partial_sum(m.neighbor_offsets.begin(), m.neighbor_offsets.end(), m.neighbor_offsets.begin());

@@ -1,0 +1,201 @@
+// Copyright (c) 2026 The Surface_mesh_correspondence developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The tufted Laplacian (Sharp and Crane 2020) on non-manifold meshes: equal to the intrinsic
+// Delaunay Laplacian on closed manifold meshes, symmetric, positive semi-definite with one zero
+// eigenvalue per component on fins, touching sheets and pinched vertices, and converging to the
+// analytic spectrum of an open book of three pages.
+
+#include <CGAL/Surface_mesh_correspondence/laplacian.h>
+#include <CGAL/Surface_mesh_correspondence/internal/tufted_cover.h>
+
+#include "test_meshes.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace smc = CGAL::Surface_mesh_correspondence;
+namespace params = CGAL::Surface_mesh_correspondence::parameters;
+using namespace smc_test;
+
+namespace {
+
+typedef Eigen::SparseMatrix<double> Sparse;
+
+/// A flat mesh of `points` and `triangles`, non-manifold edges and vertices allowed.
+smc::internal::Indexed_mesh soup_mesh(const std::vector<Eigen::Vector3d>& points,
+                                      const std::vector<std::array<int, 3> >& triangles)
+{
+  smc::internal::Indexed_mesh m;
+  m.points.resize(Eigen::Index(points.size()), 3);
+  for(std::size_t i = 0; i < points.size(); ++i) m.points.row(Eigen::Index(i)) = points[i].transpose();
+  m.triangles.resize(Eigen::Index(triangles.size()), 3);
+  for(std::size_t f = 0; f < triangles.size(); ++f)
+    for(int c = 0; c < 3; ++c) m.triangles(Eigen::Index(f), c) = triangles[f][std::size_t(c)];
+  smc::internal::Mesh_requirements req;
+  req.allow_non_manifold = true;
+  smc::internal::finalize_indexed_mesh(m, req, "soup");
+  return m;
+}
+
+/// An open book: `pages` unit squares sharing the spine {(0, 0, z), z in [0, 1]}, page p at
+/// angle 2 pi p / pages about the spine (or at `angles` when given), each an n x n grid split
+/// into right triangles. Every spine edge is shared by `pages` triangles. `offset` moves the
+/// book along x.
+void add_book(int pages, int n, std::vector<Eigen::Vector3d>& points, std::vector<std::array<int, 3> >& triangles,
+              double offset = 0, std::vector<double> angles = {})
+{
+  const int first = int(points.size());
+  for(int k = 0; k <= n; ++k) points.emplace_back(offset, 0, double(k) / n);  // the spine
+  for(int p = 0; p < pages; ++p)
+  {
+    const double a = angles.empty() ? 2 * CGAL_PI * p / pages : angles[std::size_t(p)];
+    const int base = int(points.size());
+    for(int r = 1; r <= n; ++r)
+      for(int k = 0; k <= n; ++k)
+        points.emplace_back(offset + std::cos(a) * r / n, std::sin(a) * r / n, double(k) / n);
+    auto vertex = [&](int r, int k) { return r == 0 ? first + k : base + (r - 1) * (n + 1) + k; };
+    for(int r = 0; r < n; ++r)
+      for(int k = 0; k < n; ++k)
+      {
+        triangles.push_back({{vertex(r, k), vertex(r + 1, k), vertex(r + 1, k + 1)}});
+        triangles.push_back({{vertex(r, k), vertex(r + 1, k + 1), vertex(r, k + 1)}});
+      }
+  }
+}
+
+/// The sorted generalised eigenvalues of L x = lambda M x (dense).
+Eigen::VectorXd spectrum_of(const smc::Laplace_beltrami_matrices& lb)
+{
+  const Eigen::MatrixXd L(lb.stiffness_matrix), M(lb.mass_matrix);
+  return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(L, M, Eigen::EigenvaluesOnly).eigenvalues();
+}
+
+/// The properties of a Laplacian on a mesh with `components` components and area `area`.
+void check_laplacian(const smc::Laplace_beltrami_matrices& lb, double area, int components)
+{
+  const Sparse& L = lb.stiffness_matrix;
+  const Eigen::Index n = L.rows();
+  BOOST_TEST((Sparse(L.transpose()) - L).norm() <= 1e-12 * L.norm());
+  BOOST_TEST((L * Eigen::VectorXd::Ones(n)).cwiseAbs().maxCoeff() <= 1e-12 * L.diagonal().cwiseAbs().maxCoeff());
+  double max_off = -1e300;
+  for(Eigen::Index j = 0; j < L.outerSize(); ++j)
+    for(Sparse::InnerIterator it(L, j); it; ++it)
+      if(it.row() != it.col()) max_off = std::max(max_off, it.value());
+  BOOST_TEST(max_off <= 1e-12);  // intrinsic Delaunay on the cover: every weight non-negative
+  BOOST_TEST(std::abs(lb.mass.sum() - area) <= 1e-12 * area);
+  BOOST_TEST(lb.mass.minCoeff() > 0);
+  const Eigen::VectorXd ev = spectrum_of(lb);
+  const double top = ev[ev.size() - 1];
+  BOOST_TEST(ev[0] >= -1e-10 * top);
+  for(int k = 0; k < components; ++k) BOOST_TEST(std::abs(ev[k]) <= 1e-10 * top);
+  BOOST_TEST(ev[components] > 1e-6 * top);
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_SUITE(tufted_laplacian)
+
+BOOST_AUTO_TEST_CASE(the_cover_doubles_every_triangle_and_glues_every_edge_twice)
+{
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3> > triangles;
+  add_book(3, 2, points, triangles);
+  const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+  const smc::internal::Intrinsic_triangulation t = smc::internal::tufted_cover(m);
+  BOOST_TEST(t.number_of_triangles() == 2 * m.number_of_triangles());
+  for(int h = 0; h < t.number_of_halfedges(); ++h)
+  {
+    const int o = t.twin[std::size_t(h)];
+    BOOST_TEST_REQUIRE(o >= 0);  // closed
+    BOOST_TEST(t.twin[std::size_t(o)] == h);
+    BOOST_TEST(t.origin[std::size_t(o)] == t.target(h));  // consistently oriented
+    BOOST_TEST(t.length[std::size_t(o)] == t.length[std::size_t(h)]);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(on_closed_manifold_meshes_it_is_the_intrinsic_delaunay_laplacian)
+{
+  // Twisted and jittered spheres need flips; a flat grid with right triangles has a boundary
+  // whose triangles are not obtuse, so its pillow edges stay Delaunay.
+  for(const Mesh& mesh : {icosphere(2), twisted_sphere(2, 3.0), jittered_sphere(2, 0.45), grid(6, 5)})
+  {
+    const smc::internal::Indexed_mesh m = smc::internal::make_indexed_mesh(mesh);
+    const smc::Laplace_beltrami_matrices idt = smc::laplace_beltrami_matrices(mesh, params::use_intrinsic_delaunay(true));
+    const smc::Laplace_beltrami_matrices tufted = smc::internal::tufted_laplace_beltrami_matrices(m);
+    BOOST_TEST((Sparse(tufted.stiffness_matrix - idt.stiffness_matrix)).norm() <= 1e-12 * idt.stiffness_matrix.norm());
+    BOOST_TEST((tufted.mass - idt.mass).norm() == 0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(on_fins_touching_sheets_and_pinched_vertices_it_is_a_laplacian)
+{
+  auto area_of = [](const smc::internal::Indexed_mesh& m) { return m.total_area; };
+  {
+    // A fin: three pages on one spine (3 triangles per spine edge), and one at 20 degrees from
+    // another, so that the wedges differ.
+    std::vector<Eigen::Vector3d> points;
+    std::vector<std::array<int, 3> > triangles;
+    add_book(3, 4, points, triangles, 0, {0.0, 0.35, 2.5});
+    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    BOOST_TEST_CHECKPOINT("fin");
+    check_laplacian(smc::internal::tufted_laplace_beltrami_matrices(m), area_of(m), 1);
+  }
+  {
+    // Two sheets touching along an edge: 4 triangles per spine edge; and beside it, a second
+    // component.
+    std::vector<Eigen::Vector3d> points;
+    std::vector<std::array<int, 3> > triangles;
+    add_book(4, 4, points, triangles);
+    add_book(2, 3, points, triangles, 5.0);
+    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    BOOST_TEST(m.number_of_components == 2);
+    BOOST_TEST_CHECKPOINT("touching sheets");
+    check_laplacian(smc::internal::tufted_laplace_beltrami_matrices(m), area_of(m), 2);
+  }
+  {
+    // A bow-tie: two squares that share one corner vertex and nothing else.
+    std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 0, 0.3}, {-1, -1, 0.3},
+                                           {0, -1, 0.3}};
+    std::vector<std::array<int, 3> > triangles = {{{0, 1, 2}}, {{0, 2, 3}}, {{0, 4, 5}}, {{0, 5, 6}}};
+    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    BOOST_TEST_CHECKPOINT("bow-tie");
+    check_laplacian(smc::internal::tufted_laplace_beltrami_matrices(m), area_of(m), 1);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_spectrum_of_an_open_book_converges_to_the_analytic_one)
+{
+  // Three unit pages on one spine, free (Neumann) outer edges. An eigenfunction is either the
+  // same on every page (even about the spine: pi^2 (a^2 + b^2)) or sums to zero over the pages
+  // (zero on the spine: pi^2 ((a + 1/2)^2 + b^2), twice).
+  const double pi2 = CGAL_PI * CGAL_PI;
+  std::vector<double> exact = {0.25 * pi2, 0.25 * pi2, pi2, pi2, 1.25 * pi2, 1.25 * pi2, 2 * pi2};
+  std::vector<double> previous_error;
+  for(int n : {4, 8, 16})
+  {
+    std::vector<Eigen::Vector3d> points;
+    std::vector<std::array<int, 3> > triangles;
+    add_book(3, n, points, triangles);
+    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    const Eigen::VectorXd ev = spectrum_of(smc::internal::tufted_laplace_beltrami_matrices(m));
+    BOOST_TEST(std::abs(ev[0]) < 1e-9);
+    std::vector<double> error;
+    for(std::size_t k = 0; k < exact.size(); ++k) error.push_back(std::abs(ev[Eigen::Index(k + 1)] - exact[k]) / exact[k]);
+    BOOST_TEST_MESSAGE("open book, n = " << n << ": lambda_1 = " << ev[1] << " (exact " << exact[0]
+                                         << "), largest relative error of the first 7: "
+                                         << *std::max_element(error.begin(), error.end()));
+    if(!previous_error.empty())
+      for(std::size_t k = 0; k < exact.size(); ++k) BOOST_TEST(error[k] < 0.5 * previous_error[k] + 1e-9);
+    previous_error = error;
+  }
+  for(double e : previous_error) BOOST_TEST(e < 0.01);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
