@@ -10,6 +10,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/exceptions.h>
+#include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 
 #include <array>
 #include <cmath>
@@ -321,6 +322,48 @@ std::string error_of(F&& f)
     return std::string("wrong exception: ") + e.what();
   }
   return "no exception";
+}
+
+/// A flat mesh of `points` and `triangles`, non-manifold edges and vertices allowed.
+inline CGAL::Surface_mesh_correspondence::internal::Indexed_mesh soup_mesh(const std::vector<Eigen::Vector3d>& points,
+                                      const std::vector<std::array<int, 3> >& triangles)
+{
+  CGAL::Surface_mesh_correspondence::internal::Indexed_mesh m;
+  m.points.resize(Eigen::Index(points.size()), 3);
+  for(std::size_t i = 0; i < points.size(); ++i) m.points.row(Eigen::Index(i)) = points[i].transpose();
+  m.triangles.resize(Eigen::Index(triangles.size()), 3);
+  for(std::size_t f = 0; f < triangles.size(); ++f)
+    for(int c = 0; c < 3; ++c) m.triangles(Eigen::Index(f), c) = triangles[f][std::size_t(c)];
+  CGAL::Surface_mesh_correspondence::internal::Mesh_requirements req;
+  req.allow_non_manifold = true;
+  CGAL::Surface_mesh_correspondence::internal::finalize_indexed_mesh(m, req, "soup");
+  return m;
+}
+
+/// An open book: `pages` unit squares sharing the spine {(0, 0, z), z in [0, 1]}, page p at
+/// angle 2 pi p / pages about the spine (or at `angles` when given), each an n x n grid split
+/// into right triangles. Every spine edge is shared by `pages` triangles. `offset` moves the
+/// book along x.
+inline void add_book(int pages, int n, std::vector<Eigen::Vector3d>& points, std::vector<std::array<int, 3> >& triangles,
+              double offset = 0, std::vector<double> angles = {})
+{
+  const int first = int(points.size());
+  for(int k = 0; k <= n; ++k) points.emplace_back(offset, 0, double(k) / n);  // the spine
+  for(int p = 0; p < pages; ++p)
+  {
+    const double a = angles.empty() ? 2 * CGAL_PI * p / pages : angles[std::size_t(p)];
+    const int base = int(points.size());
+    for(int r = 1; r <= n; ++r)
+      for(int k = 0; k <= n; ++k)
+        points.emplace_back(offset + std::cos(a) * r / n, std::sin(a) * r / n, double(k) / n);
+    auto vertex = [&](int r, int k) { return r == 0 ? first + k : base + (r - 1) * (n + 1) + k; };
+    for(int r = 0; r < n; ++r)
+      for(int k = 0; k < n; ++k)
+      {
+        triangles.push_back({{vertex(r, k), vertex(r + 1, k), vertex(r + 1, k + 1)}});
+        triangles.push_back({{vertex(r, k), vertex(r + 1, k + 1), vertex(r, k + 1)}});
+      }
+  }
 }
 
 inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }

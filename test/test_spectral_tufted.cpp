@@ -28,48 +28,6 @@ namespace {
 
 typedef Eigen::SparseMatrix<double> Sparse;
 
-/// A flat mesh of `points` and `triangles`, non-manifold edges and vertices allowed.
-smc::internal::Indexed_mesh soup_mesh(const std::vector<Eigen::Vector3d>& points,
-                                      const std::vector<std::array<int, 3> >& triangles)
-{
-  smc::internal::Indexed_mesh m;
-  m.points.resize(Eigen::Index(points.size()), 3);
-  for(std::size_t i = 0; i < points.size(); ++i) m.points.row(Eigen::Index(i)) = points[i].transpose();
-  m.triangles.resize(Eigen::Index(triangles.size()), 3);
-  for(std::size_t f = 0; f < triangles.size(); ++f)
-    for(int c = 0; c < 3; ++c) m.triangles(Eigen::Index(f), c) = triangles[f][std::size_t(c)];
-  smc::internal::Mesh_requirements req;
-  req.allow_non_manifold = true;
-  smc::internal::finalize_indexed_mesh(m, req, "soup");
-  return m;
-}
-
-/// An open book: `pages` unit squares sharing the spine {(0, 0, z), z in [0, 1]}, page p at
-/// angle 2 pi p / pages about the spine (or at `angles` when given), each an n x n grid split
-/// into right triangles. Every spine edge is shared by `pages` triangles. `offset` moves the
-/// book along x.
-void add_book(int pages, int n, std::vector<Eigen::Vector3d>& points, std::vector<std::array<int, 3> >& triangles,
-              double offset = 0, std::vector<double> angles = {})
-{
-  const int first = int(points.size());
-  for(int k = 0; k <= n; ++k) points.emplace_back(offset, 0, double(k) / n);  // the spine
-  for(int p = 0; p < pages; ++p)
-  {
-    const double a = angles.empty() ? 2 * CGAL_PI * p / pages : angles[std::size_t(p)];
-    const int base = int(points.size());
-    for(int r = 1; r <= n; ++r)
-      for(int k = 0; k <= n; ++k)
-        points.emplace_back(offset + std::cos(a) * r / n, std::sin(a) * r / n, double(k) / n);
-    auto vertex = [&](int r, int k) { return r == 0 ? first + k : base + (r - 1) * (n + 1) + k; };
-    for(int r = 0; r < n; ++r)
-      for(int k = 0; k < n; ++k)
-      {
-        triangles.push_back({{vertex(r, k), vertex(r + 1, k), vertex(r + 1, k + 1)}});
-        triangles.push_back({{vertex(r, k), vertex(r + 1, k + 1), vertex(r, k + 1)}});
-      }
-  }
-}
-
 /// The sorted generalised eigenvalues of L x = lambda M x (dense).
 Eigen::VectorXd spectrum_of(const smc::Laplace_beltrami_matrices& lb)
 {
@@ -106,8 +64,8 @@ BOOST_AUTO_TEST_CASE(the_cover_doubles_every_triangle_and_glues_every_edge_twice
 {
   std::vector<Eigen::Vector3d> points;
   std::vector<std::array<int, 3> > triangles;
-  add_book(3, 2, points, triangles);
-  const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+  smc_test::add_book(3, 2, points, triangles);
+  const smc::internal::Indexed_mesh m = smc_test::soup_mesh(points, triangles);
   const smc::internal::Intrinsic_triangulation t = smc::internal::tufted_cover(m);
   BOOST_TEST(t.number_of_triangles() == 2 * m.number_of_triangles());
   for(int h = 0; h < t.number_of_halfedges(); ++h)
@@ -142,8 +100,8 @@ BOOST_AUTO_TEST_CASE(on_fins_touching_sheets_and_pinched_vertices_it_is_a_laplac
     // another, so that the wedges differ.
     std::vector<Eigen::Vector3d> points;
     std::vector<std::array<int, 3> > triangles;
-    add_book(3, 4, points, triangles, 0, {0.0, 0.35, 2.5});
-    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    smc_test::add_book(3, 4, points, triangles, 0, {0.0, 0.35, 2.5});
+    const smc::internal::Indexed_mesh m = smc_test::soup_mesh(points, triangles);
     BOOST_TEST_CHECKPOINT("fin");
     check_laplacian(smc::internal::tufted_laplace_beltrami_matrices(m), area_of(m), 1);
   }
@@ -152,9 +110,9 @@ BOOST_AUTO_TEST_CASE(on_fins_touching_sheets_and_pinched_vertices_it_is_a_laplac
     // component.
     std::vector<Eigen::Vector3d> points;
     std::vector<std::array<int, 3> > triangles;
-    add_book(4, 4, points, triangles);
-    add_book(2, 3, points, triangles, 5.0);
-    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    smc_test::add_book(4, 4, points, triangles);
+    smc_test::add_book(2, 3, points, triangles, 5.0);
+    const smc::internal::Indexed_mesh m = smc_test::soup_mesh(points, triangles);
     BOOST_TEST(m.number_of_components == 2);
     BOOST_TEST_CHECKPOINT("touching sheets");
     check_laplacian(smc::internal::tufted_laplace_beltrami_matrices(m), area_of(m), 2);
@@ -164,7 +122,7 @@ BOOST_AUTO_TEST_CASE(on_fins_touching_sheets_and_pinched_vertices_it_is_a_laplac
     std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 0, 0.3}, {-1, -1, 0.3},
                                            {0, -1, 0.3}};
     std::vector<std::array<int, 3> > triangles = {{{0, 1, 2}}, {{0, 2, 3}}, {{0, 4, 5}}, {{0, 5, 6}}};
-    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    const smc::internal::Indexed_mesh m = smc_test::soup_mesh(points, triangles);
     BOOST_TEST_CHECKPOINT("bow-tie");
     check_laplacian(smc::internal::tufted_laplace_beltrami_matrices(m), area_of(m), 1);
   }
@@ -182,8 +140,8 @@ BOOST_AUTO_TEST_CASE(the_spectrum_of_an_open_book_converges_to_the_analytic_one)
   {
     std::vector<Eigen::Vector3d> points;
     std::vector<std::array<int, 3> > triangles;
-    add_book(3, n, points, triangles);
-    const smc::internal::Indexed_mesh m = soup_mesh(points, triangles);
+    smc_test::add_book(3, n, points, triangles);
+    const smc::internal::Indexed_mesh m = smc_test::soup_mesh(points, triangles);
     const Eigen::VectorXd ev = spectrum_of(smc::internal::tufted_laplace_beltrami_matrices(m));
     BOOST_TEST(std::abs(ev[0]) < 1e-9);
     std::vector<double> error;
