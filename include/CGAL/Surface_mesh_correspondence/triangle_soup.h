@@ -16,7 +16,6 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <array>
-
 #include <cmath>
 #include <cstddef>
 #include <limits>
