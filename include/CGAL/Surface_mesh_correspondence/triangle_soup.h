@@ -114,6 +114,8 @@ public:
   ///   `p[1]`, `p[2]` (CGAL points, `std::array<double, 3>`)
   /// \tparam PolygonRange a random-access range of faces, each a range of integer vertex indices
   ///   with `size()` and `operator[]`
+  /// \param points the positions of the vertices (point i: vertex i)
+  /// \param polygons the faces, as indices into `points`
   /// \param origin the name of the soup (a file, "mesh 1") and, for a soup read from a text file,
   ///   the line of each vertex and face, for the messages
   /// \throws Invalid_mesh_error naming the first problem, the vertex or face, and where it comes
