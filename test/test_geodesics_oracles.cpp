@@ -4,14 +4,17 @@
 // bound, both are close to exact geodesics, and parallel builds equal sequential ones.
 
 #include <CGAL/Surface_mesh_correspondence/distance_oracle.h>
+#include <CGAL/Surface_mesh_correspondence/internal/neighborhood_search.h>
 
 #include "test_meshes.h"
 
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -359,6 +362,114 @@ BOOST_AUTO_TEST_CASE(dense_distances_on_non_manifold_meshes_match_the_unfolded_p
   // (exact for one source on a flat mesh) only approximates: first-order accuracy, 1.3% at worst.
   BOOST_TEST_MESSAGE("bow-tie: largest relative error " << worst);
   BOOST_TEST(worst < 0.02);
+}
+
+// The local oracle, k-rings and farthest point sampling on a non-manifold mesh (an open book of
+// three pages at uneven angles): local rows hold the pairs within the radius at the analytic
+// distances, far pairs get estimates within the landmark bound; k-rings and samples equal a
+// breadth-first search and a farthest point sampling written here over the triangles.
+BOOST_AUTO_TEST_CASE(local_oracle_rings_and_sampling_on_non_manifold_meshes)
+{
+  const int n = 8;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3> > triangles;
+  smc_test::add_book(3, n, points, triangles, 0, {0.0, 0.35, 2.5});
+  const smci::Indexed_mesh m = smc_test::soup_mesh(points, triangles);
+  const int nv = m.number_of_vertices();
+  auto page = [&](int v) { return v <= n ? -1 : (v - (n + 1)) / (n * (n + 1)); };
+  auto exact = [&](int a, int b) {
+    const Eigen::Vector3d& pa = points[std::size_t(a)];
+    const Eigen::Vector3d& pb = points[std::size_t(b)];
+    if(page(a) < 0 || page(b) < 0 || page(a) == page(b)) return (pa - pb).norm();
+    return std::hypot(std::hypot(pa.x(), pa.y()) + std::hypot(pb.x(), pb.y()), pa.z() - pb.z());
+  };
+  const double radius = 0.3;
+  const smc::Local_distance_oracle local = smc::Local_distance_oracle::build(m, radius, 12);
+  int wrong_rows = 0, wrong_values = 0, outside_bound = 0;
+  for(int k = 0; k < nv; ++k)
+    for(int l = 0; l < nv; ++l)
+    {
+      const double d = exact(k, l);
+      if(std::abs(d - radius) < 1e-5) continue;  // on the radius: either way within float rounding
+      if((d <= radius) != local.is_local(k, l)) ++wrong_rows;
+      if(k == l) continue;
+      const double e = local.distance(k, l);
+      if(d <= radius)
+      {
+        if(std::abs(e - d) > 1e-5 * d) ++wrong_values;
+      }
+      else if(e < d * (1 - 1e-5) || e > d + 2 * local.covering_radius() + 1e-5)
+        ++outside_bound;
+    }
+  BOOST_TEST(wrong_rows == 0);
+  BOOST_TEST(wrong_values == 0);
+  BOOST_TEST(outside_bound == 0);
+
+  // Neighbours: the vertices sharing a triangle, whatever the number of triangles per edge.
+  std::vector<std::set<int> > adjacent(static_cast<std::size_t>(nv));
+  for(const auto& t : triangles)
+    for(int a = 0; a < 3; ++a)
+      for(int b = 0; b < 3; ++b)
+        if(a != b) adjacent[std::size_t(t[std::size_t(a)])].insert(t[std::size_t(b)]);
+  smci::K_ring_workspace rings(m);
+  for(int seed : {0, n / 2, n + 3, nv - 1})
+    for(int k : {1, 2, 3})
+    {
+      std::vector<int> ring;
+      rings.k_ring(&seed, 1, k, ring);
+      std::vector<int> level(std::size_t(nv), -1), queue = {seed};
+      level[std::size_t(seed)] = 0;
+      for(std::size_t q = 0; q < queue.size(); ++q)
+        for(int w : adjacent[std::size_t(queue[q])])
+          if(level[std::size_t(w)] < 0 && level[std::size_t(queue[q])] < k)
+          {
+            level[std::size_t(w)] = level[std::size_t(queue[q])] + 1;
+            queue.push_back(w);
+          }
+      std::sort(ring.begin(), ring.end());
+      std::sort(queue.begin(), queue.end());
+      BOOST_TEST((ring == queue));
+    }
+
+  // Farthest point sampling along the edges: each sample is (up to rounding: the grids have ties)
+  // the farthest vertex from the samples before it, by shortest paths along the triangles'
+  // edges computed here by repeated relaxation.
+  std::vector<int> samples;
+  smci::Edge_length_graph graph(m);
+  smci::Farthest_point_sampler sampler(graph);
+  std::vector<int> all(static_cast<std::size_t>(nv));
+  for(int v = 0; v < nv; ++v) all[std::size_t(v)] = v;
+  sampler.sample(all.data(), all.size(), nullptr, 0, 20, samples);
+  BOOST_TEST_REQUIRE(samples.size() == 20u);
+  BOOST_TEST(samples[0] == 0);
+  std::vector<double> nearest(std::size_t(nv), std::numeric_limits<double>::infinity());
+  int not_farthest = 0;
+  for(std::size_t s = 0; s < samples.size(); ++s)
+  {
+    if(s > 0)
+    {
+      const double farthest = *std::max_element(nearest.begin(), nearest.end());
+      if(nearest[std::size_t(samples[s])] < farthest * (1 - 1e-9)) ++not_farthest;
+    }
+    std::vector<double> d(std::size_t(nv), std::numeric_limits<double>::infinity());
+    d[std::size_t(samples[s])] = 0;
+    for(bool changed = true; changed;)
+    {
+      changed = false;
+      for(int v = 0; v < nv; ++v)
+        for(int w : adjacent[std::size_t(v)])
+        {
+          const double through = d[std::size_t(v)] + (points[std::size_t(v)] - points[std::size_t(w)]).norm();
+          if(through < d[std::size_t(w)] * (1 - 1e-12))
+          {
+            d[std::size_t(w)] = through;
+            changed = true;
+          }
+        }
+    }
+    for(int v = 0; v < nv; ++v) nearest[std::size_t(v)] = std::min(nearest[std::size_t(v)], d[std::size_t(v)]);
+  }
+  BOOST_TEST(not_farthest == 0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
