@@ -156,4 +156,62 @@ BOOST_AUTO_TEST_CASE(the_spectrum_of_an_open_book_converges_to_the_analytic_one)
   for(double e : previous_error) BOOST_TEST(e < 0.01);
 }
 
+BOOST_AUTO_TEST_CASE(faces_of_zero_area_are_mollified)
+{
+  // A flat unit square (a book of one page, 16 x 16 cells) in which 9 interior vertices are
+  // moved onto the far edge of one of their triangles: 9 of 512 triangles get zero area (their
+  // vertices are collinear) while the surface stays the same square.
+  const int n = 16;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3> > triangles;
+  smc_test::add_book(1, n, points, triangles);
+  smc::internal::Mesh_requirements req;
+  req.allow_non_manifold = true;
+  req.allow_degenerate_faces = true;
+  auto flat_mesh = [&](const std::vector<Eigen::Vector3d>& p) {
+    smc::internal::Indexed_mesh m;
+    m.points.resize(Eigen::Index(p.size()), 3);
+    for(std::size_t i = 0; i < p.size(); ++i) m.points.row(Eigen::Index(i)) = p[i].transpose();
+    m.triangles.resize(Eigen::Index(triangles.size()), 3);
+    for(std::size_t f = 0; f < triangles.size(); ++f)
+      for(int c = 0; c < 3; ++c) m.triangles(Eigen::Index(f), c) = triangles[f][std::size_t(c)];
+    smc::internal::finalize_indexed_mesh(m, req, "square");
+    return m;
+  };
+  const smc::internal::Indexed_mesh clean = flat_mesh(points);
+  std::vector<Eigen::Vector3d> moved = points;
+  int degenerate = 0;
+  for(int r : {3, 7, 11})
+    for(int k : {3, 7, 11})
+    {
+      const int v = (n + 1) + (r - 1) * (n + 1) + k;  // vertex (r, k) of the page
+      // Its first triangle (v, (r + 1, k), (r + 1, k + 1)): v goes to the middle of the far edge.
+      for(const auto& t : triangles)
+        if(t[0] == v)
+        {
+          moved[std::size_t(v)] = 0.5 * (points[std::size_t(t[1])] + points[std::size_t(t[2])]);
+          break;
+        }
+    }
+  const smc::internal::Indexed_mesh m = flat_mesh(moved);
+  for(int f = 0; f < m.number_of_triangles(); ++f)
+    if(m.triangle_areas[std::size_t(f)] < 1e-12) ++degenerate;
+  BOOST_TEST(degenerate == 9);
+  double epsilon = 0;
+  const smc::Laplace_beltrami_matrices lb = smc::internal::tufted_laplace_beltrami_matrices(m, 1e-5, &epsilon);
+  BOOST_TEST(epsilon > 0);
+  BOOST_TEST(epsilon < 1e-5);  // 1e-5 of the mean edge length (1/16 or so), at most
+  BOOST_TEST(lb.stiffness_matrix.coeffs().allFinite());
+  check_laplacian(lb, lb.mass.sum(), 1);
+  BOOST_TEST(std::abs(lb.mass.sum() - 1.0) < 1e-3);
+  // The same square: the spectrum is that of the clean grid, and both approach the analytic
+  // Neumann eigenvalues pi^2 (a^2 + b^2).
+  const Eigen::VectorXd mollified = spectrum_of(lb), reference = spectrum_of(smc::internal::tufted_laplace_beltrami_matrices(clean));
+  double worst = 0;
+  for(int k = 1; k <= 8; ++k) worst = std::max(worst, std::abs(mollified[k] - reference[k]) / reference[k]);
+  BOOST_TEST_MESSAGE("9 zero-area triangles of 512: epsilon " << epsilon << ", largest relative change of the first 8 eigenvalues " << worst);
+  BOOST_TEST(worst < 0.02);
+  BOOST_TEST(std::abs(reference[1] - CGAL_PI * CGAL_PI) < 0.02 * CGAL_PI * CGAL_PI);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -110,15 +111,34 @@ inline Laplace_beltrami_matrices laplace_beltrami_matrices(const Indexed_mesh& m
 /// component; on a closed manifold mesh it is the intrinsic Delaunay Laplacian
 /// (laplace_beltrami_matrices() with `use_intrinsic_delaunay`). `number_of_flips` counts the flips
 /// on the cover.
-inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m)
+///
+/// Faces of zero or nearly zero area (a mesh built with Mesh_requirements::allow_degenerate_faces)
+/// are handled by intrinsic mollification (mollify_edge_lengths()) with a margin of `mollification`
+/// times the mean edge length: when it lengthens the edges, M is the lumped mass of the mollified
+/// triangles, so that no vertex has zero mass. `epsilon`, when given, receives the length added.
+inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m, double mollification = 1e-5,
+                                                                  double* epsilon = nullptr)
 {
   Intrinsic_triangulation t = tufted_cover(m);
+  double mean_length = 0;
+  for(double l : t.length) mean_length += l;
+  mean_length /= double(std::max<std::size_t>(t.length.size(), 1));
+  const double added = mollify_edge_lengths(t, mollification * mean_length);
+  if(epsilon) *epsilon = added;
   Laplace_beltrami_matrices out;
+  const int n = m.number_of_vertices();
+  if(added > 0)
+  {
+    // Each triangle of the mesh is twice in the cover: half of the cover's lumped mass.
+    out.mass = Eigen::VectorXd::Zero(n);
+    for(int f = 0; f < t.number_of_triangles(); ++f)
+      for(int c = 0; c < 3; ++c) out.mass[t.origin[std::size_t(3 * f + c)]] += t.triangle_area(f) / 6.0;
+  }
+  else
+    out.mass = lumped_mass(m);
   out.number_of_flips = make_intrinsic_delaunay(t);
   out.stiffness_matrix = 0.5 * cotangent_stiffness_matrix(t);
   out.stiffness_matrix.makeCompressed();
-  out.mass = lumped_mass(m);
-  const int n = m.number_of_vertices();
   out.mass_matrix.resize(n, n);
   out.mass_matrix.reserve(Eigen::VectorXi::Ones(n));
   for(int i = 0; i < n; ++i) out.mass_matrix.insert(i, i) = out.mass[i];

@@ -41,6 +41,9 @@ struct Mesh_requirements
   /// Edges in more than two triangles and vertices joining several fans of triangles (what the
   /// tufted Laplacian handles); the neighbours are then the vertices sharing an edge.
   bool allow_non_manifold = false;
+  /// Faces of (nearly) zero area with three distinct vertices, e.g. collinear ones (what the
+  /// mollified tufted Laplacian handles); their area is then kept as computed.
+  bool allow_degenerate_faces = false;
 };
 
 /// Flat copy of a triangle mesh. Vertex indices are those of the mesh's vertex index map.
@@ -130,7 +133,7 @@ inline void fill_incident_triangles(Indexed_mesh& m, const std::string& label)
 
 /// Fills the triangle areas and the total area, rejecting faces that repeat a vertex or have zero
 /// area.
-inline void fill_triangle_areas(Indexed_mesh& m, const std::string& label)
+inline void fill_triangle_areas(Indexed_mesh& m, const std::string& label, bool allow_degenerate = false)
 {
   const int nf = m.number_of_triangles();
   m.triangle_areas.resize(nf);
@@ -144,7 +147,7 @@ inline void fill_triangle_areas(Indexed_mesh& m, const std::string& label)
                           e3 = m.point(c) - m.point(b);
     const double twice_area = e1.cross(e2).norm();
     const double longest2 = std::max(e1.squaredNorm(), std::max(e2.squaredNorm(), e3.squaredNorm()));
-    if(!(twice_area > 1e-12 * longest2))
+    if(!(twice_area > 1e-12 * longest2) && !allow_degenerate)
       throw Invalid_mesh_error(label + ": face " + std::to_string(f) + " is degenerate (zero area)");
     m.triangle_areas[f] = 0.5 * twice_area;
     m.total_area += m.triangle_areas[f];
@@ -296,7 +299,7 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
   const std::string label = mesh_label(name);
   check_indexed_mesh_points(m, label);
   fill_incident_triangles(m, label);
-  fill_triangle_areas(m, label);
+  fill_triangle_areas(m, label, req.allow_degenerate_faces);
   fill_neighbors(m, req, label);
   fill_edges(m);
   fill_components(m, req, label);

@@ -105,6 +105,27 @@ inline Intrinsic_triangulation tufted_cover(const Indexed_mesh& m)
   return t;
 }
 
+/// Intrinsic mollification (Sharp and Crane 2020, section 4.5): adds the same length epsilon to
+/// every edge of `t`, the smallest that gives every triangle a margin of at least `delta` in each
+/// of its triangle inequalities (l_a + l_b - l_c >= delta), and returns epsilon (0 when every
+/// triangle already has the margin). Triangles of zero or nearly zero area (collinear vertices,
+/// slivers) then get a small positive area and finite cotangents, while the other triangles
+/// change by about epsilon / their edge lengths.
+inline double mollify_edge_lengths(Intrinsic_triangulation& t, double delta)
+{
+  double epsilon = 0;
+  for(int f = 0; f < t.number_of_triangles(); ++f)
+    for(int c = 0; c < 3; ++c)
+    {
+      const double a = t.length[std::size_t(3 * f + c)], b = t.length[std::size_t(3 * f + (c + 1) % 3)],
+                   third = t.length[std::size_t(3 * f + (c + 2) % 3)];
+      epsilon = std::max(epsilon, delta - (a + b - third));
+    }
+  if(epsilon > 0)
+    for(double& l : t.length) l += epsilon;
+  return epsilon;
+}
+
 } // namespace internal
 } // namespace Surface_mesh_correspondence
 } // namespace CGAL
