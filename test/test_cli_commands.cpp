@@ -7,8 +7,10 @@
 
 #include <CGAL/Surface_mesh_correspondence/automatic_initialization.h>
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
+#include <CGAL/Surface_mesh_correspondence/mesh_io.h>
 #include <CGAL/Surface_mesh_correspondence/refine_coupled_maps.h>
 
+#include "damaged_meshes.h"
 #include "test_cli_helpers.h"
 
 #include <boost/test/unit_test.hpp>
@@ -276,6 +278,45 @@ BOOST_AUTO_TEST_CASE(match_without_initial_maps)
   // Without the early stop, the whole schedule runs (ring_schedule [3, 2]: 2 outer iterations).
   run(" --set stop_when_consistency_worsens=false", "all");
   BOOST_TEST(read_text(in_scratch("all.json")).find("\"outer_iterations\": 2,") != std::string::npos);
+}
+
+// A target with a fin and 1% of its faces of zero area (test/damaged_meshes.h) is matched; the
+// decisions, --verbose and the statistics say what the input check found, with 1-based indices.
+BOOST_AUTO_TEST_CASE(match_handles_and_reports_damaged_meshes)
+{
+  const Cli_pair& p = cli_pair();
+  const smc::Triangle_soup clean = smc::read_triangle_soup(p.b);
+  smc_damage::Soup soup;
+  soup.points = clean.points();
+  soup.triangles = clean.triangles();
+  const smc_damage::Damaged flat = smc_damage::collapse_faces(soup, 0.01);
+  const smc_damage::Damaged d = smc_damage::add_fin(flat.soup, soup.triangles.size() / 2);
+  const std::size_t n2 = d.soup.points.size(), degenerate = std::size_t(std::lround(0.01 * double(soup.triangles.size())));
+  std::ofstream off(in_scratch("damaged.off"));
+  off.precision(17);
+  off << "OFF\n" << n2 << " " << d.soup.triangles.size() << " 0\n";
+  for(const auto& q : d.soup.points) off << q[0] << " " << q[1] << " " << q[2] << "\n";
+  for(const auto& t : d.soup.triangles) off << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  off.close();
+  const Run r = comap("match " + p.a + " " + in_scratch("damaged.off") + " --verbose --out-12 " +
+                      in_scratch("x12.map") + " --out-21 " + in_scratch("x21.map") + " --stats " +
+                      in_scratch("damaged.json") + fast_options());
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  check_map_file(in_scratch("x12.map"), num_vertices(p.pair.m1), n2, 1);
+  check_map_file(in_scratch("x21.map"), n2, num_vertices(p.pair.m1), 1);
+  BOOST_TEST(contains(r.out, "input: mesh 2 has 1 non-manifold edge, " + std::to_string(degenerate) +
+                                 " degenerate faces (tufted Laplacian with mollification)"),
+             r.out);
+  const int i = d.soup.triangles.back()[0] + 1, j = d.soup.triangles.back()[1] + 1;
+  const std::string edge = "(" + std::to_string(std::min(i, j)) + ", " + std::to_string(std::max(i, j)) + ")";
+  BOOST_TEST(contains(r.err, "damaged.off: 1 non-manifold edge (in more than two faces): " + edge), r.err);
+  BOOST_TEST(contains(r.err, "damaged.off: " + std::to_string(degenerate) + " faces of zero area:"), r.err);
+  BOOST_TEST(contains(r.err, "A.off: manifold, no face of zero area"), r.err);
+  const std::string stats = read_text(in_scratch("damaged.json"));
+  BOOST_TEST(contains(stats, "\"non_manifold_edges\": 1,"), stats);
+  BOOST_TEST(contains(stats, "\"degenerate_faces\": " + std::to_string(degenerate) + ","), stats);
+  BOOST_TEST(contains(stats, "\"non_manifold_edge_vertices\": [[" + std::to_string(std::min(i, j)) + ", " +
+                                 std::to_string(std::max(i, j)) + "]]"), stats);
 }
 
 BOOST_AUTO_TEST_CASE(match_repairs_torn_maps)

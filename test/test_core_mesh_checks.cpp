@@ -2,6 +2,8 @@
 // The flat mesh copy every algorithm runs on: structure, and a clear exception for bad meshes.
 
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
+#include <CGAL/Surface_mesh_correspondence/internal/orientation_operator.h>
+#include <CGAL/Surface_mesh_correspondence/internal/vertex_normals.h>
 #include <CGAL/Surface_mesh_correspondence/mesh_io.h>
 #include <CGAL/Surface_mesh_correspondence/triangle_soup.h>
 
@@ -19,6 +21,7 @@
 #include <string>
 
 namespace smc = CGAL::Surface_mesh_correspondence;
+namespace tt = boost::test_tools;
 using namespace smc_test;
 
 namespace {
@@ -130,6 +133,110 @@ BOOST_AUTO_TEST_CASE(bad_meshes_are_named)
   BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] { smc::internal::finalize_indexed_mesh(bow, {}); }),
                       "vertex 0 joins several separate fans"));
   (void)fin;
+}
+
+// With the requirements that allow them (those of the matching's shapes), non-manifold edges and
+// vertices and faces of zero area are recorded instead of refused; the triangles that have no
+// orientation (on a non-manifold edge, or of zero area) are told apart; the orientation check of
+// a soup skips the edges in more than two faces, and still catches a flipped face elsewhere.
+BOOST_AUTO_TEST_CASE(irregular_meshes_are_recorded_when_allowed)
+{
+  smc::internal::Mesh_requirements req;
+  req.allow_non_manifold = true;
+  req.allow_degenerate_faces = true;
+  // A tetrahedron (0, 1, 2, 3) with a fin (1, 2, 4) and a bow-tie at vertex 3: the triangle
+  // (3, 5, 6), and a triangle (1, 7, 0) of zero area outside the tetrahedron's edge (0, 1).
+  const std::vector<std::array<double, 3> > p = {{0, 0, 1}, {1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {2, -1, 0},
+                                                 {0, 2, 0}, {1, 2, 0}, {2, 0, -1}};
+  const std::vector<std::array<int, 3> > tet = {{2, 3, 1}, {2, 1, 0}, {2, 0, 3}, {1, 3, 0}};
+  std::vector<std::array<int, 3> > t = tet;
+  t.push_back({2, 1, 4});
+  t.push_back({3, 5, 6});
+  t.push_back({1, 7, 0});  // vertex 7 = 2 p1 - p0, on the line of (0, 1)
+  smc::internal::Indexed_mesh m = soup(p, t);
+  smc::internal::finalize_indexed_mesh(m, req);
+  BOOST_TEST((m.non_manifold_edges == std::vector<std::array<int, 2> >{{{0, 1}}, {{1, 2}}}));
+  BOOST_TEST((m.non_manifold_vertices == std::vector<int>{3}));
+  BOOST_TEST((m.degenerate_faces == std::vector<int>{6}));
+  BOOST_TEST(!m.is_manifold());
+  BOOST_TEST(m.needs_tufted_cover());
+  // Oriented: the faces on neither (0, 1) nor (1, 2), and not of zero area.
+  BOOST_TEST((smc::internal::oriented_triangles(m) == std::vector<char>{0, 0, 1, 0, 0, 1, 0}));
+  // The default requirements refuse each problem, as before.
+  BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] { smc::internal::finalize_indexed_mesh(m, {}); }),
+                      "is degenerate (zero area)"));
+  // A clean tetrahedron has none of this.
+  smc::internal::Indexed_mesh clean = soup(p, tet);
+  clean.points.conservativeResize(4, 3);
+  smc::internal::finalize_indexed_mesh(clean, req);
+  BOOST_TEST(clean.is_manifold());
+  BOOST_TEST(!clean.needs_tufted_cover());
+  BOOST_TEST(clean.non_manifold_edges.empty());
+  BOOST_TEST(clean.degenerate_faces.empty());
+  // Soups: the fin's orientation is not checked, a flipped face on a manifold edge still is.
+  std::vector<std::array<double, 3> > fin_points(p.begin(), p.begin() + 5);
+  std::vector<std::array<int, 3> > fin_faces = tet;
+  fin_faces.push_back({1, 2, 4});  // traverses (1, 2) in the direction of face 0
+  const smc::internal::Indexed_mesh fin =
+      smc::internal::make_soup_indexed_mesh(smc::Triangle_soup(fin_points, fin_faces), req);
+  BOOST_TEST((fin.non_manifold_edges == std::vector<std::array<int, 2> >{{{1, 2}}}));
+  std::vector<std::array<int, 3> > flipped = fin_faces;
+  flipped[2] = {{2, 3, 0}};
+  BOOST_TEST(contains(error_of<smc::Invalid_mesh_error>([&] {
+                        smc::internal::make_soup_indexed_mesh(smc::Triangle_soup(fin_points, flipped), req);
+                      }),
+                      "inconsistently oriented faces"));
+}
+
+// Orientation on a flat grid with a vertical fin on an interior edge and a zero-area triangle (a
+// T-junction closed by a sliver: the midpoint m of an edge (a, b) and the triangle (a, b, m)): the
+// vertex normals are the grid's (0, 0, 1), also at the fin's edge, the fin's tip gets the fin's
+// normal; n . (grad x cross grad y), the signed descriptor of the functional maps, is 1 at every
+// vertex but the tip (which has no oriented face: 0), with no NaN from the sliver.
+BOOST_AUTO_TEST_CASE(orientation_leaves_out_fins_and_faces_of_zero_area)
+{
+  const int n = 6;
+  std::vector<std::array<double, 3> > p;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i) p.push_back({{double(i), double(j), 0.0}});
+  auto v = [&](int i, int j) { return j * (n + 1) + i; };
+  std::vector<std::array<int, 3> > t;
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i)
+    {
+      t.push_back({{v(i, j), v(i + 1, j), v(i + 1, j + 1)}});
+      t.push_back({{v(i, j), v(i + 1, j + 1), v(i, j + 1)}});
+    }
+  // The sliver: triangle (a, b, c) = the first one of cell (1, 1) split at the middle m of (a, b).
+  const std::size_t split = std::size_t(2 * (1 * n + 1));
+  const int a = t[split][0], b = t[split][1], c = t[split][2], m = int(p.size());
+  p.push_back({{1.5, 1.0, 0.0}});
+  t[split] = {{a, m, c}};
+  t.push_back({{m, b, c}});
+  t.push_back({{a, b, m}});
+  // The fin: a vertical triangle on the diagonal of cell (4, 3).
+  const int f0 = v(4, 3), f1 = v(5, 4), tip = int(p.size());
+  p.push_back({{4.5, 3.5, 1.0}});
+  t.push_back({{f0, f1, tip}});
+  smc::internal::Mesh_requirements req;
+  req.allow_non_manifold = true;
+  req.allow_degenerate_faces = true;
+  smc::internal::Indexed_mesh mesh = soup(p, t);
+  smc::internal::finalize_indexed_mesh(mesh, req);
+  BOOST_TEST(mesh.degenerate_faces.size() == 1u);
+  BOOST_TEST(mesh.non_manifold_edges.size() == 1u);
+  const smc::internal::Indexed_mesh::Points normals = smc::internal::vertex_normals(mesh);
+  const Eigen::RowVector3d up(0, 0, 1), fin_normal = Eigen::RowVector3d(1, -1, 0).normalized();
+  for(int x = 0; x < mesh.number_of_vertices(); ++x)
+    if(x != tip) BOOST_TEST((normals.row(x) - up).norm() <= 1e-12, "vertex " << x);
+  BOOST_TEST((normals.row(f0) - up).norm() <= 1e-12);
+  BOOST_TEST((normals.row(tip) - fin_normal).norm() <= 1e-12);
+  Eigen::MatrixXd xy(mesh.number_of_vertices(), 2);
+  xy.col(0) = mesh.points.col(0);
+  xy.col(1) = mesh.points.col(1);
+  const Eigen::MatrixXd turn = smc::internal::gradient_cross_products(mesh, xy, {{0, 1}}, 1.0);
+  for(int x = 0; x < mesh.number_of_vertices(); ++x)
+    BOOST_TEST(turn(x, 0) == (x == tip ? 0.0 : 1.0), tt::tolerance(1e-12));
 }
 
 // Triangle soups (points and index triples): every problem is named with its vertex or face and,

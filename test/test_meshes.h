@@ -324,9 +324,11 @@ std::string error_of(F&& f)
   return "no exception";
 }
 
-/// A flat mesh of `points` and `triangles`, non-manifold edges and vertices allowed.
+/// A flat mesh of `points` and `triangles`, non-manifold edges and vertices allowed (and faces of
+/// zero area with `allow_degenerate_faces`).
 inline CGAL::Surface_mesh_correspondence::internal::Indexed_mesh soup_mesh(const std::vector<Eigen::Vector3d>& points,
-                                      const std::vector<std::array<int, 3> >& triangles)
+                                      const std::vector<std::array<int, 3> >& triangles,
+                                      bool allow_degenerate_faces = false)
 {
   CGAL::Surface_mesh_correspondence::internal::Indexed_mesh m;
   m.points.resize(Eigen::Index(points.size()), 3);
@@ -336,6 +338,7 @@ inline CGAL::Surface_mesh_correspondence::internal::Indexed_mesh soup_mesh(const
     for(int c = 0; c < 3; ++c) m.triangles(Eigen::Index(f), c) = triangles[f][std::size_t(c)];
   CGAL::Surface_mesh_correspondence::internal::Mesh_requirements req;
   req.allow_non_manifold = true;
+  req.allow_degenerate_faces = allow_degenerate_faces;
   CGAL::Surface_mesh_correspondence::internal::finalize_indexed_mesh(m, req, "soup");
   return m;
 }

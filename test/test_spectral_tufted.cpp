@@ -4,9 +4,11 @@
 // The tufted Laplacian (Sharp and Crane 2020) on non-manifold meshes: equal to the intrinsic
 // Delaunay Laplacian on closed manifold meshes, symmetric, positive semi-definite with one zero
 // eigenvalue per component on fins, touching sheets and pinched vertices, and converging to the
-// analytic spectrum of an open book of three pages.
+// analytic spectrum of an open book of three pages; the wedges around an edge follow the angles
+// even past a triangle of zero area, and meshes that need the cover get this Laplacian.
 
 #include <CGAL/Surface_mesh_correspondence/laplacian.h>
+#include <CGAL/Surface_mesh_correspondence/spectrum.h>
 #include <CGAL/Surface_mesh_correspondence/internal/tufted_cover.h>
 
 #include "test_meshes.h"
@@ -76,6 +78,75 @@ BOOST_AUTO_TEST_CASE(the_cover_doubles_every_triangle_and_glues_every_edge_twice
     BOOST_TEST(t.origin[std::size_t(o)] == t.target(h));  // consistently oriented
     BOOST_TEST(t.length[std::size_t(o)] == t.length[std::size_t(h)]);
   }
+}
+
+// Around an edge, the wedges pair the triangles in the order of their angles about it, also when
+// the first triangle has zero area (its third vertex on the edge's line, so no direction): four
+// pages at 0, 200, 90 and 300 degrees are glued 0-90, 90-200, 200-300, 300-0, not in index order.
+BOOST_AUTO_TEST_CASE(the_wedges_follow_the_angles_when_a_triangle_has_zero_area)
+{
+  std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}};
+  std::vector<std::array<int, 3> > triangles = {{{0, 1, 2}}};  // zero area, first around (0, 1)
+  const double degrees[] = {0, 200, 90, 300};
+  for(int p = 0; p < 4; ++p)
+  {
+    const double a = degrees[p] * CGAL_PI / 180;
+    points.emplace_back(std::cos(a), std::sin(a), 0.5);
+    if(p % 2 == 0)
+      triangles.push_back({{0, 1, 3 + p}});
+    else
+      triangles.push_back({{1, 0, 3 + p}});
+  }
+  const smc::internal::Indexed_mesh m = smc_test::soup_mesh(points, triangles, true);
+  BOOST_TEST((m.degenerate_faces == std::vector<int>{0}));
+  const smc::internal::Intrinsic_triangulation t = smc::internal::tufted_cover(m);
+  // The faces glued across the edge (0, 1), each wedge once; the zero-area face 0 lies in one
+  // wedge, between two pages: that wedge counts as glueing those two.
+  std::vector<std::array<int, 2> > glued, through_zero;
+  for(int h = 0; h < t.number_of_halfedges(); ++h)
+  {
+    const int o = t.twin[std::size_t(h)];
+    if(std::min(t.origin[std::size_t(h)], t.target(h)) != 0 || std::max(t.origin[std::size_t(h)], t.target(h)) != 1 ||
+       h > o)
+      continue;
+    const int a = h / 6, b = o / 6;
+    if(a == 0 || b == 0)
+      through_zero.push_back({{std::max(a, b), 0}});
+    else
+      glued.push_back({{std::min(a, b), std::max(a, b)}});
+  }
+  BOOST_TEST_REQUIRE(through_zero.size() == 2u);
+  glued.push_back({{std::min(through_zero[0][0], through_zero[1][0]), std::max(through_zero[0][0], through_zero[1][0])}});
+  std::sort(glued.begin(), glued.end());
+  // Faces 1-4 are the pages at 0, 200, 90, 300 degrees: 0-90 (1, 3), 90-200 (2, 3), 200-300
+  // (2, 4), 300-0 (1, 4).
+  const std::vector<std::array<int, 2> > expected = {{{1, 3}}, {{1, 4}}, {{2, 3}}, {{2, 4}}};
+  BOOST_TEST((glued == expected));
+}
+
+// The Laplacian of a mesh that needs the tufted cover (non-manifold, or faces of zero area) is the
+// tufted one, whatever asks for it (laplace_beltrami_matrices(), the spectrum).
+BOOST_AUTO_TEST_CASE(non_manifold_meshes_get_the_tufted_laplacian)
+{
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3> > triangles;
+  smc_test::add_book(3, 4, points, triangles);
+  const smc::internal::Indexed_mesh m = smc_test::soup_mesh(points, triangles);
+  BOOST_TEST(m.needs_tufted_cover());
+  const smc::Laplace_beltrami_matrices a = smc::internal::laplace_beltrami_matrices(m, true);
+  const smc::Laplace_beltrami_matrices b = smc::internal::tufted_laplace_beltrami_matrices(m);
+  BOOST_TEST((Sparse(a.stiffness_matrix - b.stiffness_matrix).norm() == 0.0));
+  BOOST_TEST((a.mass == b.mass));
+  check_laplacian(a, 3.0, 1);
+  // Without intrinsic flips: the cover's own cotangent weights, the same mass.
+  const smc::Laplace_beltrami_matrices c = smc::internal::laplace_beltrami_matrices(m, false);
+  BOOST_TEST(c.number_of_flips == 0);
+  BOOST_TEST((c.mass == b.mass));
+  BOOST_TEST((Sparse(c.stiffness_matrix.transpose()) - c.stiffness_matrix).norm() <= 1e-12 * c.stiffness_matrix.norm());
+  BOOST_TEST((c.stiffness_matrix * Eigen::VectorXd::Ones(m.number_of_vertices())).cwiseAbs().maxCoeff() <= 1e-12);
+  const smc::Laplace_beltrami_spectrum spectrum(m, params::number_of_eigenpairs(6));
+  const Eigen::VectorXd ev = spectrum_of(a);
+  for(int k = 0; k < 6; ++k) BOOST_TEST(std::abs(spectrum.eigenvalues()[k] - ev[k]) <= 1e-8 * (1 + ev[k]));
 }
 
 BOOST_AUTO_TEST_CASE(on_closed_manifold_meshes_it_is_the_intrinsic_delaunay_laplacian)

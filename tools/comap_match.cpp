@@ -34,8 +34,8 @@ int run_match(int argc, char** argv)
                   "Computes dense point-to-point maps SOURCE -> TARGET and TARGET -> SOURCE with the library's "
                   "match_shapes(): automatic initial maps (functional maps + ZoomOut), or the given ones repaired and "
                   "compared with the automatic ones, then the coupled refinement of Azencot, Dubrovina and Guibas "
-                  "(2019), kept where it makes the maps better. Meshes: OFF, PLY, OBJ or STL; connected, manifold "
-                  "triangle meshes. Map files: one target vertex index per line, line i for source vertex i.");
+                  "(2019), kept where it makes the maps better. Meshes: OFF, PLY, OBJ or STL; connected triangle "
+                  "meshes, non-manifold edges and vertices and faces of zero area included (reported). Map files: one target vertex index per line, line i for source vertex i.");
   p.section("Files");
   p.value("--out-12", "FILE", "output: the map SOURCE -> TARGET", "", [&](const std::string& v) { out_12 = v; });
   p.value("--out-21", "FILE", "output: the map TARGET -> SOURCE", "", [&](const std::string& v) { out_21 = v; });
@@ -49,6 +49,9 @@ int run_match(int argc, char** argv)
           [&](const std::string& v) { index_base = parse_int("--index-base", v, 0, 1); });
   p.value("--stats", "FILE.json", "write the settings, the decisions, per-stage times and per-solve statistics as "
           "JSON", "", [&](const std::string& v) { stats = v; });
+  bool verbose = false;
+  p.flag("--verbose", "print on stderr what the input check found in each mesh: non-manifold edges and vertices, "
+         "faces of zero area, with their indices", [&] { verbose = true; });
   p.section("Settings");
   std::vector<std::string> settings_files;
   add_settings_options(p, settings, &settings_files);
@@ -96,6 +99,9 @@ int run_match(int argc, char** argv)
   Vertex_map map_12, map_21;
   const smc::Matching_result r =
       match_soups(m1, m2, given ? &given_12 : nullptr, given ? &given_21 : nullptr, np, map_12, map_21);
+  if(verbose)
+    std::cerr << irregularities_report(files[0], r.irregularities_1, index_base)
+              << irregularities_report(files[1], r.irregularities_2, index_base);
   // The maps and the statistics are all written before the first of them replaces its file.
   smc::Atomic_output_file file_12(out_12), file_21(out_21);
   smc::write_vertex_indices(file_12.stream(), map_12, index_base);
@@ -106,8 +112,12 @@ int run_match(int argc, char** argv)
     stats_file.emplace(stats);
     Json_writer json(stats_file->stream());
     json.begin_object().value("command", "match").value("index_base", index_base);
-    json.begin_object("source").value("file", files[0]).value("vertices", n1).end_object();
-    json.begin_object("target").value("file", files[1]).value("vertices", n2).end_object();
+    json.begin_object("source").value("file", files[0]).value("vertices", n1);
+    write_irregularities(json, "irregularities", r.irregularities_1, index_base);
+    json.end_object();
+    json.begin_object("target").value("file", files[1]).value("vertices", n2);
+    write_irregularities(json, "irregularities", r.irregularities_2, index_base);
+    json.end_object();
     if(given) json.value("init_12", init_12).value("init_21", init_21);
     write_settings(json, "settings", settings, r.refined_maps);
     write_result(json, "result", r);

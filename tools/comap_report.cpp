@@ -3,6 +3,8 @@
 
 #include "comap_report.h"
 
+#include <algorithm>
+#include <functional>
 #include <iostream>
 
 namespace comap {
@@ -113,6 +115,61 @@ std::string confidence_report(const smc::Matching_result& r)
               << "): the maps are probably wrong as a whole (a mirror image, or parts sent to other parts); "
                  "landmarks (--landmarks) or initial maps can guide them\n";
   return "confidence: " + fixed(c.score, 2) + (c.low ? " (low: " : " (lowest: ") + c.reason + ")\n";
+}
+
+void write_irregularities(Json_writer& json, const std::string& key, const smc::Mesh_irregularities& r,
+                          int index_base)
+{
+  const std::size_t b = std::size_t(index_base);
+  json.begin_object(key)
+      .value("non_manifold_edges", r.non_manifold_edges.size())
+      .value("non_manifold_vertices", r.non_manifold_vertices.size())
+      .value("degenerate_faces", r.degenerate_faces.size());
+  // The index lists on one line each.
+  auto list = [](std::size_t count, const std::function<std::string(std::size_t)>& item) {
+    std::string text = "[";
+    for(std::size_t k = 0; k < count; ++k) text += (k ? ", " : "") + item(k);
+    return text + "]";
+  };
+  json.raw_value("non_manifold_edge_vertices", list(r.non_manifold_edges.size(), [&](std::size_t k) {
+    return "[" + std::to_string(r.non_manifold_edges[k][0] + b) + ", " + std::to_string(r.non_manifold_edges[k][1] + b) +
+           "]";
+  }));
+  json.raw_value("non_manifold_vertex_indices", list(r.non_manifold_vertices.size(), [&](std::size_t k) {
+    return std::to_string(r.non_manifold_vertices[k] + b);
+  }));
+  json.raw_value("degenerate_face_indices", list(r.degenerate_faces.size(), [&](std::size_t k) {
+    return std::to_string(r.degenerate_faces[k] + b);
+  }));
+  json.end_object();
+}
+
+std::string irregularities_report(const std::string& file, const smc::Mesh_irregularities& r, int index_base,
+                                  std::size_t shown)
+{
+  if(r.empty()) return file + ": manifold, no face of zero area\n";
+  const std::size_t b = std::size_t(index_base);
+  std::string out;
+  auto list = [&](std::size_t count, const char* one, const char* several,
+                  const std::function<std::string(std::size_t)>& item) {
+    if(count == 0) return;
+    out += file + ": " + std::to_string(count) + " " + (count == 1 ? one : several) + ":";
+    for(std::size_t k = 0; k < std::min(count, shown); ++k) out += " " + item(k);
+    if(count > shown) out += " ... (" + std::to_string(count - shown) + " more)";
+    out += "\n";
+  };
+  list(r.non_manifold_edges.size(), "non-manifold edge (in more than two faces)",
+       "non-manifold edges (in more than two faces)", [&](std::size_t k) {
+    return "(" + std::to_string(r.non_manifold_edges[k][0] + b) + ", " + std::to_string(r.non_manifold_edges[k][1] + b) +
+           ")";
+  });
+  list(r.non_manifold_vertices.size(), "non-manifold vertex (joining separate fans of faces)",
+       "non-manifold vertices (joining separate fans of faces)",
+       [&](std::size_t k) { return std::to_string(r.non_manifold_vertices[k] + b); });
+  list(r.degenerate_faces.size(), "face of zero area", "faces of zero area", [&](std::size_t k) { return std::to_string(r.degenerate_faces[k] + b); });
+  out += file + ": matched with the tufted Laplacian" + std::string(r.degenerate_faces.empty() ? "" : " and mollification") +
+         " (" + std::to_string(index_base) + "-based indices)\n";
+  return out;
 }
 
 void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r)

@@ -37,6 +37,17 @@ private:
   double last_line_ = -1e9;
 };
 
+/// Writes what the input check found in a mesh (Mesh_irregularities) as the object `key`: the
+/// counts and the indices (`index_base`: the numbering of the map files), vertices of an edge in
+/// increasing order, faces numbered in the file's order.
+void write_irregularities(Json_writer& json, const std::string& key, const smc::Mesh_irregularities& r,
+                          int index_base);
+
+/// The lines --verbose prints on stderr about a mesh `file`: what the input check found, with the
+/// indices (at most `shown` of each kind), or that it found nothing.
+std::string irregularities_report(const std::string& file, const smc::Mesh_irregularities& r, int index_base,
+                                  std::size_t shown = 20);
+
 /// Writes the result of match_shapes() (decisions, stage times, consistency and distortion,
 /// refinement solves) as a JSON object named `key`.
 void write_result(Json_writer& json, const std::string& key, const smc::Matching_result& r);

@@ -137,7 +137,8 @@ def match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None
         Vertex positions of mesh 1 and mesh 2 (any real dtype; converted to float64).
     F1, F2 : array_like, shape (m, 3)
         Triangles as 0-based vertex indices (any integer dtype), consistently oriented. Each mesh
-        must be one connected, manifold surface (with or without boundary).
+        must be one connected surface (with or without boundary); non-manifold edges and
+        vertices and faces of zero area are handled (``info["irregularities_1"]``).
     init : pair of array_like, optional
         Initial maps ``(map_12, map_21)``: ``map_12`` of shape (n1,) holds, for each vertex of
         mesh 1, a 0-based vertex of mesh 2, and ``map_21`` of shape (n2,) the other way round.
@@ -171,13 +172,17 @@ def match(V1, F1, V2, F2, init=None, landmarks=None, settings=None, threads=None
         the refinement, over each mesh and per region, with ``regions_1`` / ``_2``: the region
         of every vertex), ``confidence`` (``score`` in [0, 1], ``low``: the maps are probably
         wrong as a whole, ``reason``), ``refinement`` (its TRW-S solves), ``unrefined_map_12`` / ``_21`` (the
-        maps that entered the refinement), ...
+        maps that entered the refinement), ``irregularities_1`` / ``_2`` (what the input check
+        found in each mesh and the matching handled, 0-based: ``non_manifold_edges`` (k, 2),
+        ``non_manifold_vertices``, ``degenerate_faces``), ...
 
     Raises
     ------
     ValueError
         Arrays of the wrong shape or type; meshes that are empty, not made of triangles, not
-        manifold, not connected, with a non-finite coordinate or a face index out of range;
+        connected, inconsistently oriented, with a non-finite coordinate, a face index out of
+        range or a face repeating a vertex (non-manifold edges and vertices and faces of zero
+        area are matched);
         initial maps or landmarks that are not maps between the meshes. The message names the
         mesh and the vertex or face.
     RuntimeError
@@ -277,8 +282,8 @@ def read_mesh(file):
 
     The mesh gets the checks of ``match``. Raises ``OSError`` for a file that cannot be read
     (missing, a directory, an unknown format, truncated or malformed) and ``ValueError`` for a
-    mesh ``match`` refuses (a non-finite coordinate, a face index out of range, a non-triangle, a
-    non-manifold edge, several components, ...); for OFF and OBJ files the message names the line
+    mesh ``match`` refuses (a non-finite coordinate, a face index out of range, a non-triangle,
+    several components, ...); for OFF and OBJ files the message names the line
     ("a.off:12: vertex 9 has a non-finite coordinate").
     """
     return _comap.read_mesh(_path(file))

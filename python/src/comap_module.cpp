@@ -137,6 +137,21 @@ py::dict diagnostics_dict(const smc::Matching_diagnostics& g)
   return out;
 }
 
+/// What the input check found in a mesh (0-based indices): non_manifold_edges (k x 2),
+/// non_manifold_vertices, degenerate_faces.
+py::dict irregularities_dict(const smc::Mesh_irregularities& r)
+{
+  py::array_t<std::int64_t> edges({py::ssize_t(r.non_manifold_edges.size()), py::ssize_t(2)});
+  auto e = edges.mutable_unchecked<2>();
+  for(std::size_t k = 0; k < r.non_manifold_edges.size(); ++k)
+    for(int c = 0; c < 2; ++c) e(py::ssize_t(k), c) = std::int64_t(r.non_manifold_edges[k][std::size_t(c)]);
+  py::dict d;
+  d["non_manifold_edges"] = edges;
+  d["non_manifold_vertices"] = index_array(r.non_manifold_vertices);
+  d["degenerate_faces"] = index_array(r.degenerate_faces);
+  return d;
+}
+
 /// The figures of Matching_result, with the keys of `comap match --stats` ("result").
 py::dict result_dict(const smc::Matching_result& r)
 {
@@ -154,6 +169,8 @@ py::dict result_dict(const smc::Matching_result& r)
   d["refined"] = r.refined;
   d["termination"] = smc::to_string(r.termination);
   d["decisions"] = r.decisions;
+  d["irregularities_1"] = irregularities_dict(r.irregularities_1);
+  d["irregularities_2"] = irregularities_dict(r.irregularities_2);
   py::dict selection;
   selection["refined_more_consistent"] = r.selection.refined_more_consistent;
   selection["refined_fraction_12"] = r.selection.refined_fraction_12;
@@ -483,7 +500,7 @@ py::tuple read_mesh(const std::string& file)
   {
     py::gil_scoped_release release;
     smc::read_triangle_soup(file, points, polygons, origin);
-    smc::check_triangle_soup(points, polygons, origin);
+    smc::inspect_triangle_soup(smc::Triangle_soup(points, polygons, origin));
   }
   py::array_t<double> v({py::ssize_t(points.size()), py::ssize_t(3)});
   auto pv = v.mutable_unchecked<2>();

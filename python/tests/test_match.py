@@ -163,7 +163,8 @@ def message(error):
     (lambda V, F: (np.where(np.arange(len(V))[:, None] == 5, np.nan, V), F), ["mesh 1", "vertex 5", "non-finite"]),
     (lambda V, F: (V, np.where(np.arange(len(F))[:, None] == 3, len(V), F)), ["mesh 1", "face 3", "refers to vertex 642"]),
     (lambda V, F: (V, np.where(np.arange(len(F))[:, None] == 3, -1, F)), ["mesh 1", "face 3", "refers to vertex -1"]),
-    (lambda V, F: (V, np.vstack([F, F[:1]])), ["mesh 1", "not manifold"]),
+    (lambda V, F: (V, np.where((np.arange(len(F))[:, None] == 3) & (np.arange(3) == 1), F[:, :1], F)),
+     ["mesh 1", "face 3", "repeats vertex"]),
     (lambda V, F: (V, np.vstack([F[:, ::-1][:1], F[1:]])), ["mesh 1", "inconsistently oriented"]),
     (lambda V, F: (np.vstack([V, V + 5]), np.vstack([F, F + len(V)])), ["mesh 1", "2 connected components"]),
 ])
@@ -174,6 +175,28 @@ def test_bad_meshes_raise_value_errors(pair, bad, words):
         comap.match(V, F, V2, F2)
     for w in words:
         assert w in message(e), message(e)
+
+
+def test_non_manifold_and_degenerate_meshes_are_matched(pair, tmp_path):
+    """A fin on an edge of mesh 2 and a face of zero area: matched, and reported in info."""
+    V1, F1, V2, F2 = pair
+    i, j, k = F2[0]
+    normal = np.cross(V2[j] - V2[i], V2[k] - V2[i])
+    tip = 0.5 * (V2[i] + V2[j]) + np.linalg.norm(V2[j] - V2[i]) * normal / np.linalg.norm(normal)
+    V = np.vstack([V2, tip])
+    F = np.vstack([F2, [[i, j, len(V2)]]])
+    a, b, c = F[100]
+    V[c] = V[a] + 0.5 * (V[b] - V[a])  # face 100 flattened: its vertex c at the middle of (a, b)
+    m12, m21, info = comap.match(V1, F1, V, F)
+    assert m12.shape == (len(V1),) and m21.shape == (len(V),)
+    assert info["irregularities_2"]["non_manifold_edges"].tolist() == [sorted([int(i), int(j)])]
+    assert list(info["irregularities_2"]["degenerate_faces"]) == [100]
+    assert len(info["irregularities_1"]["non_manifold_edges"]) == 0
+    assert any("input: mesh 2 has 1 non-manifold edge, 1 degenerate face" in d for d in info["decisions"])
+    # read_mesh gives such a file the checks of match, which it passes.
+    write_off(tmp_path / "fin.off", V, F)
+    V_read, F_read = comap.read_mesh(str(tmp_path / "fin.off"))
+    assert np.array_equal(F_read, F)
 
 
 def test_too_small_meshes_raise_value_errors(pair):

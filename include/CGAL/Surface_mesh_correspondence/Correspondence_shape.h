@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -32,6 +33,77 @@
 
 namespace CGAL {
 namespace Surface_mesh_correspondence {
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// What the input check found in a mesh beyond a manifold mesh of well-shaped triangles: what
+/// remeshers and scanners leave and the matching handles (the tufted Laplacian of Sharp and Crane
+/// 2020 with intrinsic mollification, see doc/spectral.md), instead of refusing the mesh.
+/// Vertices are numbered as in the maps, faces in the input order.
+struct Mesh_irregularities
+{
+  /// Edges (i < j) in more than two faces: a fin, two sheets touching along an edge.
+  std::vector<std::array<std::size_t, 2> > non_manifold_edges;
+  /// Vertices joining several separate fans of faces (a bow-tie).
+  std::vector<std::size_t> non_manifold_vertices;
+  /// Faces of (nearly) zero area: collinear vertices, slivers below 1e-12 of the squared longest
+  /// edge.
+  std::vector<std::size_t> degenerate_faces;
+
+  /// Whether the mesh has none of these.
+  bool empty() const { return non_manifold_edges.empty() && non_manifold_vertices.empty() && degenerate_faces.empty(); }
+};
+
+namespace internal {
+
+inline Mesh_irregularities mesh_irregularities(const Indexed_mesh& m)
+{
+  Mesh_irregularities r;
+  for(const auto& e : m.non_manifold_edges) r.non_manifold_edges.push_back({{std::size_t(e[0]), std::size_t(e[1])}});
+  r.non_manifold_vertices.assign(m.non_manifold_vertices.begin(), m.non_manifold_vertices.end());
+  r.degenerate_faces.assign(m.degenerate_faces.begin(), m.degenerate_faces.end());
+  return r;
+}
+
+/// What the shapes accept: one connected component; boundaries, non-manifold edges and vertices
+/// and faces of zero area (handled by the tufted Laplacian and mollification).
+inline Mesh_requirements shape_requirements()
+{
+  Mesh_requirements req;
+  req.allow_several_components = false;
+  req.allow_non_manifold = true;
+  req.allow_degenerate_faces = true;
+  return req;
+}
+
+/// "1 non-manifold edge, 2 degenerate faces" (the counts that are not zero).
+inline std::string irregularities_summary(const Mesh_irregularities& r)
+{
+  std::string s;
+  auto add = [&](std::size_t count, const char* what) {
+    if(count == 0) return;
+    if(!s.empty()) s += ", ";
+    s += std::to_string(count) + " " + what + (count == 1 ? "" : "s");
+  };
+  add(r.non_manifold_edges.size(), "non-manifold edge");
+  add(r.non_manifold_vertices.size(), "non-manifold vertex");
+  add(r.degenerate_faces.size(), "degenerate face");
+  return s;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSurfaceMeshCorrespondenceRef
+/// Checks that a triangle soup is a mesh Correspondence_shape and match_shapes() accept: at least
+/// one vertex and one face, finite coordinates, faces of three distinct vertices in range, one
+/// connected component without isolated vertices, faces oriented consistently across every edge
+/// in two faces. Returns what the check found beyond a manifold mesh of well-shaped triangles,
+/// which the matching handles (stricter: check_triangle_soup(), what a halfedge mesh can hold).
+/// \throws Invalid_mesh_error naming the first problem, the vertex or face, and the soup's origin
+inline Mesh_irregularities inspect_triangle_soup(const Triangle_soup& soup)
+{
+  return internal::mesh_irregularities(
+      internal::make_soup_indexed_mesh(soup, internal::shape_requirements(), soup.origin().name));
+}
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// Seconds spent on each part of a shape's preprocessing.
@@ -162,9 +234,12 @@ inline void check_precomputed_spectrum(const Laplace_beltrami_spectrum& given, c
   std::vector<double> area(static_cast<std::size_t>(n), 0.0);
   for(int f = 0; f < mesh.number_of_triangles(); ++f)
     for(int c = 0; c < 3; ++c) area[std::size_t(mesh.triangles(f, c))] += mesh.triangle_areas[std::size_t(f)] / 3;
+  // Faces of zero area: the mass is that of the mollified triangles (laplacian.h), within a
+  // small fraction of the mean vertex area of the input ones.
+  const double slack = mesh.degenerate_faces.empty() ? 1e-12 : 1e-3 / n;
   for(int v = 0; v < n; ++v)
     if(!(std::abs(given.mass()[v] - area[std::size_t(v)]) <=
-         1e-9 * area[std::size_t(v)] + 1e-12 * mesh.total_area))
+         1e-9 * area[std::size_t(v)] + slack * mesh.total_area))
       throw Invalid_parameter_error(what + "not a spectrum of this mesh (vertex " + std::to_string(v) +
                                     " has area " + std::to_string(area[std::size_t(v)]) + ", mass " +
                                     std::to_string(given.mass()[v]) + " in the spectrum)");
@@ -275,7 +350,8 @@ public:
   /// The mesh's vertex descriptor (`std::size_t`, the point index, for a Triangle_soup).
   typedef typename internal::Shape_vertex<TriangleMesh>::type vertex_descriptor;
 
-  /// Prepares `tm`. The mesh must be a connected, manifold triangle mesh (boundaries are fine).
+  /// Prepares `tm`. The mesh must be a connected triangle mesh; boundaries, non-manifold edges
+  /// and vertices and faces of zero area are handled (see irregularities()).
   /// \param tm the mesh (its geometry is copied into the shape)
   /// \param np optional named parameters:
   ///   - the settings of stage `preparation` (number_of_eigenpairs, use_intrinsic_delaunay, the
@@ -293,9 +369,9 @@ public:
   ///   - `vertex_point_map`, `vertex_index_map` (not for a Triangle_soup).
   /// \param name the mesh's name in error messages (a Triangle_soup's own origin, when it has a
   ///   name, takes precedence)
-  /// \throws Invalid_mesh_error (empty, non-triangle, non-manifold, degenerate face, NaN,
-  ///   isolated vertex, several components, too few vertices for the initialisation's basis),
-  ///   Invalid_parameter_error, Numerical_error
+  /// \throws Invalid_mesh_error (empty, non-triangle, a face repeating a vertex, NaN, isolated
+  ///   vertex, several components, faces oriented inconsistently across a manifold edge, too few
+  ///   vertices for the initialisation's basis), Invalid_parameter_error, Numerical_error
   template <typename NamedParameters = parameters::Default_named_parameters>
   explicit Correspondence_shape(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
                                 const std::string& name = "mesh")
@@ -310,8 +386,7 @@ public:
   {
     const Matching_settings settings = Matching_settings::from(np);
     auto t = std::chrono::steady_clock::now();
-    internal::Mesh_requirements req;
-    req.allow_several_components = false;
+    const internal::Mesh_requirements req = internal::shape_requirements();
     if constexpr(std::is_same<TriangleMesh, Triangle_soup>::value)
       data_->mesh = internal::make_soup_indexed_mesh(tm, req, name, &vertices_);
     else
@@ -369,6 +444,8 @@ public:
   double scale() const { return data_->scale; }
   /// Seconds spent on each preprocessing stage.
   const Shape_preprocessing_times& preprocessing_times() const { return data_->times; }
+  /// What the input check found in the mesh beyond a manifold mesh of well-shaped triangles.
+  Mesh_irregularities irregularities() const { return internal::mesh_irregularities(data_->mesh); }
   /// True when the dense distance oracle was built.
   bool has_dense_oracle() const { return std::holds_alternative<Dense_distance_oracle>(data_->oracle); }
   /// The index-based data (for the package's algorithms).

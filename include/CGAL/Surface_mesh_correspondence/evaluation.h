@@ -241,6 +241,8 @@ private:
   {
     internal::Mesh_requirements r;
     r.allow_isolated_vertices = true;
+    r.allow_non_manifold = true;
+    r.allow_degenerate_faces = true;
     return r;
   }
 

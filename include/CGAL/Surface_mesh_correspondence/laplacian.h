@@ -85,11 +85,19 @@ inline Eigen::VectorXd lumped_mass(const Indexed_mesh& m)
   return mass;
 }
 
+inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m, double mollification = 1e-5,
+                                                                  double* epsilon = nullptr,
+                                                                  bool use_intrinsic_delaunay = true);
+
 /// L and M of an indexed mesh; L on its intrinsic Delaunay triangulation when
-/// `use_intrinsic_delaunay` is true (M is always the lumped mass of the input triangles).
+/// `use_intrinsic_delaunay` is true (M is the lumped mass of the input triangles). A mesh with
+/// non-manifold edges or vertices or faces of zero area (Indexed_mesh::needs_tufted_cover()) gets
+/// the tufted Laplacian (tufted_laplace_beltrami_matrices()), the same operator on a manifold mesh
+/// of well-shaped triangles.
 inline Laplace_beltrami_matrices laplace_beltrami_matrices(const Indexed_mesh& m,
                                                            bool use_intrinsic_delaunay)
 {
+  if(m.needs_tufted_cover()) return tufted_laplace_beltrami_matrices(m, 1e-5, nullptr, use_intrinsic_delaunay);
   Intrinsic_triangulation t = make_intrinsic_triangulation(m);
   Laplace_beltrami_matrices out;
   if(use_intrinsic_delaunay) out.number_of_flips = make_intrinsic_delaunay(t);
@@ -116,8 +124,9 @@ inline Laplace_beltrami_matrices laplace_beltrami_matrices(const Indexed_mesh& m
 /// are handled by intrinsic mollification (mollify_edge_lengths()) with a margin of `mollification`
 /// times the mean edge length: when it lengthens the edges, M is the lumped mass of the mollified
 /// triangles, so that no vertex has zero mass. `epsilon`, when given, receives the length added.
-inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m, double mollification = 1e-5,
-                                                                  double* epsilon = nullptr)
+/// Without `use_intrinsic_delaunay`, L is the cotangent matrix of the (mollified) cover itself.
+inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m, double mollification,
+                                                                  double* epsilon, bool use_intrinsic_delaunay)
 {
   Intrinsic_triangulation t = tufted_cover(m);
   double mean_length = 0;
@@ -136,7 +145,7 @@ inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_
   }
   else
     out.mass = lumped_mass(m);
-  out.number_of_flips = make_intrinsic_delaunay(t);
+  if(use_intrinsic_delaunay) out.number_of_flips = make_intrinsic_delaunay(t);
   out.stiffness_matrix = 0.5 * cotangent_stiffness_matrix(t);
   out.stiffness_matrix.makeCompressed();
   out.mass_matrix.resize(n, n);

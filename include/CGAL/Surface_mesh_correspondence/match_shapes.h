@@ -98,6 +98,9 @@ struct Matching_result
   /// The maps that entered the refinement, as vertex indices (mesh 1 -> 2 and 2 -> 1): the
   /// automatic maps, or the given maps after their repair and comparison.
   Vertex_index_map_vector unrefined_map_12, unrefined_map_21;
+  /// What the input check found in mesh 1 and mesh 2 beyond manifold meshes of well-shaped
+  /// triangles (non-manifold edges and vertices, degenerate faces), which the matching handled.
+  Mesh_irregularities irregularities_1, irregularities_2;
 
   double seconds(Matching_stage s) const { return stage_seconds[static_cast<std::size_t>(s)]; }
 };
@@ -377,6 +380,16 @@ Matching_result match_prepared_shapes(const Shape_data& d1, const Shape_data& d2
                                       std::chrono::steady_clock::time_point start)
 {
   Matching_result result;
+  result.irregularities_1 = mesh_irregularities(d1.mesh);
+  result.irregularities_2 = mesh_irregularities(d2.mesh);
+  for(int k : {1, 2})
+  {
+    const Mesh_irregularities& r = k == 1 ? result.irregularities_1 : result.irregularities_2;
+    if(!r.empty())
+      result.decisions.push_back("input: mesh " + std::to_string(k) + " has " + irregularities_summary(r) +
+                                 " (tufted Laplacian" + (r.degenerate_faces.empty() ? "" : " with mollification") +
+                                 ")");
+  }
   const Matching_settings& settings = in.settings;
   const std::size_t n1 = std::size_t(d1.number_of_vertices()), n2 = std::size_t(d2.number_of_vertices());
   Initialization_settings s = initialization_settings(settings);

@@ -15,6 +15,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -66,8 +67,9 @@ long long soup_index(const Index& i)
     return static_cast<long long>(i);
 }
 
-/// Throws unless the two faces of every interior edge traverse it in opposite directions
-/// (the soup is manifold: at most two faces per edge).
+/// Throws unless the two faces of every interior manifold edge traverse it in opposite directions
+/// (the orientation of the faces around an edge in more than two of them, e.g. a fin, is not
+/// checked: some of them must traverse it in the same direction).
 inline void check_soup_orientation(const Indexed_mesh& m, const std::string& label)
 {
   // The face that traverses each directed edge (a -> b).
@@ -77,7 +79,9 @@ inline void check_soup_orientation(const Indexed_mesh& m, const std::string& lab
     {
       const int a = m.triangles(f, c), b = m.triangles(f, (c + 1) % 3);
       const auto inserted = directed.emplace(std::make_pair(a, b), f);
-      if(!inserted.second)
+      const std::array<int, 2> edge{{std::min(a, b), std::max(a, b)}};
+      if(!inserted.second &&
+         !std::binary_search(m.non_manifold_edges.begin(), m.non_manifold_edges.end(), edge))
         throw Invalid_mesh_error(label + " has inconsistently oriented faces: faces " +
                                  std::to_string(inserted.first->second) + " and " + std::to_string(f) +
                                  " traverse the edge (" + std::to_string(std::min(a, b)) + ", " +

@@ -70,6 +70,12 @@ struct Indexed_mesh
   /// Total surface area and the area of each triangle.
   double total_area = 0;
   std::vector<double> triangle_areas;
+  /// What the mesh has beyond a manifold mesh of well-shaped triangles, when its requirements
+  /// allow it (Mesh_requirements): edges in more than two triangles (i < j, sorted), vertices
+  /// joining several separate fans of triangles (sorted), and faces of (nearly) zero area.
+  std::vector<std::array<int, 2> > non_manifold_edges;
+  std::vector<int> non_manifold_vertices;
+  std::vector<int> degenerate_faces;
 
   int number_of_vertices() const { return static_cast<int>(points.rows()); }
   int number_of_triangles() const { return static_cast<int>(triangles.rows()); }
@@ -79,6 +85,11 @@ struct Indexed_mesh
   const int* neighbors_end(int v) const { return neighbors.data() + neighbor_offsets[v + 1]; }
   Eigen::Vector3d point(int v) const { return points.row(v).transpose(); }
   bool has_boundary() const { return number_of_boundary_edges > 0; }
+  /// Whether the mesh is manifold (no non-manifold edge or vertex).
+  bool is_manifold() const { return non_manifold_edges.empty() && non_manifold_vertices.empty(); }
+  /// Whether the operators need the tufted cover (non-manifold) or mollification (degenerate
+  /// faces): see tufted_laplace_beltrami_matrices().
+  bool needs_tufted_cover() const { return !is_manifold() || !degenerate_faces.empty(); }
 };
 
 inline std::string mesh_label(const std::string& name)
@@ -137,6 +148,7 @@ inline void fill_triangle_areas(Indexed_mesh& m, const std::string& label, bool 
 {
   const int nf = m.number_of_triangles();
   m.triangle_areas.resize(nf);
+  m.degenerate_faces.clear();
   m.total_area = 0;
   for(int f = 0; f < nf; ++f)
   {
@@ -147,18 +159,20 @@ inline void fill_triangle_areas(Indexed_mesh& m, const std::string& label, bool 
                           e3 = m.point(c) - m.point(b);
     const double twice_area = e1.cross(e2).norm();
     const double longest2 = std::max(e1.squaredNorm(), std::max(e2.squaredNorm(), e3.squaredNorm()));
-    if(!(twice_area > 1e-12 * longest2) && !allow_degenerate)
-      throw Invalid_mesh_error(label + ": face " + std::to_string(f) + " is degenerate (zero area)");
+    if(!(twice_area > 1e-12 * longest2))
+    {
+      if(!allow_degenerate)
+        throw Invalid_mesh_error(label + ": face " + std::to_string(f) + " is degenerate (zero area)");
+      m.degenerate_faces.push_back(f);
+    }
     m.triangle_areas[f] = 0.5 * twice_area;
     m.total_area += m.triangle_areas[f];
   }
 }
 
-/// Throws unless the link edges of vertex v (the opposite edges of its triangles) join all its
-/// neighbours `unique_ring` (sorted) into one path or cycle: else v is a pinched, non-manifold
-/// vertex.
-inline void check_link_connected(int v, const std::vector<std::array<int, 2> >& link,
-                                 const std::vector<int>& unique_ring, const std::string& label)
+/// The number of connected groups into which the link edges of a vertex (the opposite edges of
+/// its triangles) join its neighbours `unique_ring` (sorted): 1 unless the vertex is pinched.
+inline int link_groups(const std::vector<std::array<int, 2> >& link, const std::vector<int>& unique_ring)
 {
   const int degree = static_cast<int>(unique_ring.size());
   std::vector<int> parent(degree);
@@ -177,17 +191,28 @@ inline void check_link_connected(int v, const std::vector<std::array<int, 2> >& 
       --groups;
     }
   }
-  if(groups != 1)
+  return groups;
+}
+
+/// Throws unless the link edges of vertex v join all its neighbours `unique_ring` (sorted) into
+/// one path or cycle: else v is a pinched, non-manifold vertex.
+inline void check_link_connected(int v, const std::vector<std::array<int, 2> >& link,
+                                 const std::vector<int>& unique_ring, const std::string& label)
+{
+  if(link_groups(link, unique_ring) != 1)
     throw Invalid_mesh_error(label + " is not manifold: vertex " + std::to_string(v) +
                              " joins several separate fans of faces");
 }
 
 /// The neighbours of vertex v (not isolated), sorted, into `unique_ring`, checked for
 /// manifoldness: each appears once (boundary edge, counted in `boundary_edges2`) or twice
-/// (interior edge) in the link of v, and the link is connected. `ring` and `link` are workspaces.
+/// (interior edge) in the link of v, and the link is connected. With `non_manifold` (the mesh whose
+/// requirements allow non-manifold meshes), what fails these checks is recorded there instead:
+/// the edges (v, w > v) in more than two triangles and v when its link is not connected. `ring`
+/// and `link` are workspaces.
 inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& label, std::vector<int>& ring,
                             std::vector<std::array<int, 2> >& link, std::vector<int>& unique_ring,
-                            int& boundary_edges2, bool allow_non_manifold = false)
+                            int& boundary_edges2, Indexed_mesh* non_manifold = nullptr)
 {
   ring.clear();
   link.clear();
@@ -208,7 +233,11 @@ inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& lab
     std::size_t e = k;
     while(e < ring.size() && ring[e] == ring[k]) ++e;
     const std::size_t multiplicity = e - k;
-    if(multiplicity > 2 && !allow_non_manifold)
+    if(multiplicity > 2 && non_manifold)
+    {
+      if(v < ring[k]) non_manifold->non_manifold_edges.push_back({v, ring[k]});
+    }
+    else if(multiplicity > 2)
       throw Invalid_mesh_error(label + " is not manifold: the edge (" + std::to_string(v) + ", " +
                                std::to_string(ring[k]) + ") is shared by " + std::to_string(multiplicity) +
                                " faces");
@@ -217,7 +246,10 @@ inline void vertex_one_ring(const Indexed_mesh& m, int v, const std::string& lab
     k = e;
   }
   // The link must be connected (else v is a pinched, non-manifold vertex).
-  if(!allow_non_manifold) check_link_connected(v, link, unique_ring, label);
+  if(!non_manifold)
+    check_link_connected(v, link, unique_ring, label);
+  else if(link_groups(link, unique_ring) != 1)
+    non_manifold->non_manifold_vertices.push_back(v);
 }
 
 /// Fills the one-ring neighbours (CSR) and the number of boundary edges. Manifoldness: around
@@ -227,6 +259,8 @@ inline void fill_neighbors(Indexed_mesh& m, const Mesh_requirements& req, const 
 {
   const int n = m.number_of_vertices();
   m.neighbor_offsets.assign(n + 1, 0);
+  m.non_manifold_edges.clear();
+  m.non_manifold_vertices.clear();
   std::vector<int> ring;                    // neighbours of v, with multiplicity
   std::vector<std::array<int, 2> > link;    // link edges of v
   std::vector<std::vector<int> > rings(n);
@@ -240,7 +274,7 @@ inline void fill_neighbors(Indexed_mesh& m, const Mesh_requirements& req, const 
                                  " is isolated (it belongs to no face)");
       continue;
     }
-    vertex_one_ring(m, v, label, ring, link, rings[v], boundary_edges2, req.allow_non_manifold);
+    vertex_one_ring(m, v, label, ring, link, rings[v], boundary_edges2, req.allow_non_manifold ? &m : nullptr);
     m.neighbor_offsets[v + 1] = static_cast<int>(rings[v].size());
   }
   std::partial_sum(m.neighbor_offsets.begin(), m.neighbor_offsets.end(), m.neighbor_offsets.begin());
@@ -303,6 +337,25 @@ inline void finalize_indexed_mesh(Indexed_mesh& m, const Mesh_requirements& req,
   fill_neighbors(m, req, label);
   fill_edges(m);
   fill_components(m, req, label);
+}
+
+/// For every triangle, whether it has a well-defined orientation and gradient: not degenerate
+/// (zero area) and no edge shared with more than one other triangle (the side of a fin, or of two
+/// sheets touching along an edge, is arbitrary). Orientation-aware operators leave out the others.
+inline std::vector<char> oriented_triangles(const Indexed_mesh& m)
+{
+  std::vector<char> oriented(std::size_t(m.number_of_triangles()), 1);
+  for(int f : m.degenerate_faces) oriented[std::size_t(f)] = 0;
+  if(!m.non_manifold_edges.empty())
+    for(int f = 0; f < m.number_of_triangles(); ++f)
+      for(int c = 0; c < 3; ++c)
+      {
+        const int a = m.triangles(f, c), b = m.triangles(f, (c + 1) % 3);
+        const std::array<int, 2> e{{std::min(a, b), std::max(a, b)}};
+        if(std::binary_search(m.non_manifold_edges.begin(), m.non_manifold_edges.end(), e))
+          oriented[std::size_t(f)] = 0;
+      }
+  return oriented;
 }
 
 /// Builds and checks the flat copy of `tm`. Vertex i of the copy is the vertex whose index in the

@@ -62,8 +62,17 @@ inline Reduced_operator_geometry reduced_operator_geometry(const Indexed_mesh& m
   g.weighted_face_basis.resize(nf, k);
   g.basis = basis;
   g.mass = mass;
+  const std::vector<char> oriented = oriented_triangles(mesh);
   for(int t = 0; t < nf; ++t)
   {
+    if(!oriented[std::size_t(t)])
+    {
+      // No orientation (degenerate, or on a non-manifold edge): no contribution.
+      g.normals.row(t).setZero();
+      g.hat_gradients.row(t).setZero();
+      g.weighted_face_basis.row(t).setZero();
+      continue;
+    }
     const int v[3] = {mesh.triangles(t, 0), mesh.triangles(t, 1), mesh.triangles(t, 2)};
     const Eigen::Vector3d p[3] = {mesh.point(v[0]) * length_scale, mesh.point(v[1]) * length_scale,
                                   mesh.point(v[2]) * length_scale};
@@ -127,7 +136,8 @@ inline Eigen::MatrixXd reduced_multiplication_operator(const Reduced_operator_ge
 
 /// Orientation-sensitive scalar descriptors: for each pair (f, g) of columns of `functions`
 /// (n x d), the vertex function <n, grad f x grad g> (the area-weighted mean over the incident
-/// triangles), with coordinates multiplied by `length_scale`. The value changes sign under an
+/// triangles that have an orientation, oriented_triangles()), with coordinates multiplied by
+/// `length_scale`. The value changes sign under an
 /// orientation-reversing isometry, so these descriptors tell a shape from its mirror image, which
 /// intrinsic descriptors (WKS, HKS) cannot. Returns n x (number of pairs).
 inline Eigen::MatrixXd gradient_cross_products(const Indexed_mesh& mesh, const Eigen::MatrixXd& functions,
@@ -139,8 +149,10 @@ inline Eigen::MatrixXd gradient_cross_products(const Indexed_mesh& mesh, const E
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, p);
   Eigen::VectorXd weight = Eigen::VectorXd::Zero(n);
   Eigen::Matrix<double, 3, Eigen::Dynamic> gradients(3, functions.cols());
+  const std::vector<char> oriented = oriented_triangles(mesh);
   for(int t = 0; t < mesh.number_of_triangles(); ++t)
   {
+    if(!oriented[std::size_t(t)]) continue;  // degenerate, or on a non-manifold edge
     const int v[3] = {mesh.triangles(t, 0), mesh.triangles(t, 1), mesh.triangles(t, 2)};
     const Eigen::Vector3d q[3] = {mesh.point(v[0]) * length_scale, mesh.point(v[1]) * length_scale,
                                   mesh.point(v[2]) * length_scale};

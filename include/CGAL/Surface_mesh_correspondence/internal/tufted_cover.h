@@ -31,7 +31,8 @@ namespace internal {
 /// has exactly two sides, whatever the number of triangles around the edges of `m` (a fin, two
 /// sheets touching along an edge); its vertices are those of `m`. On a closed manifold mesh it is
 /// two copies of the mesh, one per orientation (Sharp and Crane 2020, section 4).
-/// \pre `m` has triangles of three distinct vertices and non-zero area (finalize_indexed_mesh()).
+/// \pre `m` has triangles of three distinct vertices (finalize_indexed_mesh()); a triangle of zero
+///   area takes the place of its third vertex's projection on each of its edges.
 inline Intrinsic_triangulation tufted_cover(const Indexed_mesh& m)
 {
   const int nf = m.number_of_triangles();
@@ -63,6 +64,7 @@ inline Intrinsic_triangulation tufted_cover(const Indexed_mesh& m)
     int up, down;  // the halfedges of the sides facing increasing and decreasing angles
   };
   std::vector<Sheet> sheets;
+  std::vector<Eigen::Vector3d> directions;
   for(std::size_t begin = 0; begin < edges.size();)
   {
     std::size_t end = begin;
@@ -71,19 +73,24 @@ inline Intrinsic_triangulation tufted_cover(const Indexed_mesh& m)
     const Eigen::Vector3d pi = m.point(i);
     const Eigen::Vector3d e = (m.point(j) - pi).normalized();
     sheets.clear();
-    Eigen::Vector3d u = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+    // The direction of each triangle about the edge: its third vertex, off the edge's line. The
+    // angles are measured from the triangle farthest from the line (a triangle of zero area, its
+    // third vertex on the line, has no direction).
+    directions.clear();
+    std::size_t reference = begin;
+    for(std::size_t q = begin; q < end; ++q)
+    {
+      Eigen::Vector3d d = m.point(m.triangles(edges[q][2], (edges[q][3] + 2) % 3)) - pi;
+      d -= d.dot(e) * e;
+      directions.push_back(d);
+      if(d.squaredNorm() > directions[reference - begin].squaredNorm()) reference = q;
+    }
+    const Eigen::Vector3d u = directions[reference - begin].normalized();
+    const Eigen::Vector3d w = e.cross(u);
     for(std::size_t q = begin; q < end; ++q)
     {
       const int f = edges[q][2], c = edges[q][3];
-      const int k = m.triangles(f, (c + 2) % 3);
-      // The direction of the triangle about the edge: its third vertex, off the edge's line.
-      Eigen::Vector3d d = m.point(k) - pi;
-      d -= d.dot(e) * e;
-      if(q == begin)
-      {
-        u = d.normalized();
-        w = e.cross(u);
-      }
+      const Eigen::Vector3d& d = directions[q - begin];
       const double angle = std::atan2(d.dot(w), d.dot(u));
       // Side 0 traverses i -> j when corner c is i; its normal is then e x d, which points to
       // increasing angles.

@@ -2,6 +2,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Area-weighted vertex normals of an Indexed_mesh, oriented by the mesh's triangle orientation.
+// On a non-manifold mesh, a vertex's normal comes from its triangles that have an orientation
+// (oriented_triangles(): not on an edge of a fin or of touching sheets), and from all its triangles
+// only when none has one (the tip of a fin).
 
 #ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_VERTEX_NORMALS_H
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_VERTEX_NORMALS_H
@@ -26,15 +29,26 @@ inline Indexed_mesh::Points vertex_normals(const Indexed_mesh& m)
 {
   const int n = m.number_of_vertices();
   Indexed_mesh::Points normals = Indexed_mesh::Points::Zero(n, 3);
+  std::vector<char> oriented;
+  if(!m.is_manifold()) oriented = oriented_triangles(m);
+  // Whether the normal of v sums only oriented triangles: v has at least one.
+  auto only_oriented = [&](int v) {
+    if(oriented.empty()) return false;
+    for(int k = m.triangle_offsets[v]; k < m.triangle_offsets[v + 1]; ++k)
+      if(oriented[std::size_t(m.incident_triangles[k])]) return true;
+    return false;
+  };
+  std::vector<char> restricted(std::size_t(n), 0);
+  for(int v = 0; v < n; ++v) restricted[std::size_t(v)] = only_oriented(v);
   for(int f = 0; f < m.number_of_triangles(); ++f)
   {
     const int a = m.triangles(f, 0), b = m.triangles(f, 1), c = m.triangles(f, 2);
     const Eigen::RowVector3d pa = m.points.row(a);
     const Eigen::RowVector3d twice_area_normal =
         (m.points.row(b) - pa).cross(m.points.row(c) - pa);
-    normals.row(a) += twice_area_normal;
-    normals.row(b) += twice_area_normal;
-    normals.row(c) += twice_area_normal;
+    const bool face_oriented = oriented.empty() || oriented[std::size_t(f)];
+    for(int corner : {a, b, c})
+      if(face_oriented || !restricted[std::size_t(corner)]) normals.row(corner) += twice_area_normal;
   }
   for(int v = 0; v < n; ++v)
   {
@@ -42,7 +56,8 @@ inline Indexed_mesh::Points vertex_normals(const Indexed_mesh& m)
     // Relative test: the sum is tiny compared with the incident triangle areas when it cancels.
     double scale = 0;
     for(int k = m.triangle_offsets[v]; k < m.triangle_offsets[v + 1]; ++k)
-      scale += 2 * m.triangle_areas[m.incident_triangles[k]];
+      if(!restricted[std::size_t(v)] || oriented[std::size_t(m.incident_triangles[k])])
+        scale += 2 * m.triangle_areas[m.incident_triangles[k]];
     if(length > 1e-12 * scale && length > 0)
       normals.row(v) /= length;
     else
