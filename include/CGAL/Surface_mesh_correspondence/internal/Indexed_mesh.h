@@ -31,8 +31,9 @@ namespace CGAL {
 namespace Surface_mesh_correspondence {
 namespace internal {
 
-/// What a caller accepts from a mesh beyond the basic requirements (non-empty, triangles only,
-/// manifold, finite coordinates, no zero-area face), which are always checked.
+/// What a caller accepts from a mesh beyond the basic requirements (non-empty, triangles of three
+/// distinct vertices, finite coordinates), which are always checked. By default the mesh must also
+/// be manifold, without isolated vertices or faces of zero area.
 struct Mesh_requirements
 {
   bool allow_isolated_vertices = false;
