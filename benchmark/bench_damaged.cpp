@@ -27,7 +27,6 @@
 #include <CGAL/Surface_mesh_correspondence/mesh_io.h>
 
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -41,24 +40,6 @@ typedef CGAL::Parallel_tag Tag;
 #else
 typedef CGAL::Sequential_tag Tag;
 #endif
-
-smc_damage::Soup damage_soup(const smc::Triangle_soup& s)
-{
-  smc_damage::Soup out;
-  out.points = s.points();
-  out.triangles = s.triangles();
-  return out;
-}
-
-void write_off(const std::string& file, const smc_damage::Soup& s)
-{
-  std::ofstream out(file);
-  out.precision(17);
-  out << "OFF\n" << s.points.size() << " " << s.triangles.size() << " 0\n";
-  for(const auto& p : s.points) out << p[0] << " " << p[1] << " " << p[2] << "\n";
-  for(const auto& t : s.triangles) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
-  if(!out) throw std::runtime_error("cannot write " + file);
-}
 
 } // namespace
 
@@ -90,7 +71,7 @@ int main(int argc, char** argv)
     const smc::Vertex_index_map_vector gt_2 = smc::read_vertex_indices(dir + "corres/" + target + ".vts", 1);
     const smc::Map_evaluator<Tag> evaluator_1(soup_1), evaluator_2(soup_2);
 
-    const smc_damage::Soup clean = damage_soup(soup_2);
+    const smc_damage::Soup clean = smc_damage::soup_of(soup_2);
     struct Case
     {
       std::string name;
@@ -110,7 +91,7 @@ int main(int argc, char** argv)
     std::vector<std::string> rows;
     for(const Case& c : cases)
     {
-      if(!write_dir.empty()) write_off(write_dir + "/" + c.name + ".off", c.damaged.soup);
+      if(!write_dir.empty()) smc_damage::write_off(write_dir + "/" + c.name + ".off", c.damaged.soup);
       const smc::Triangle_soup damaged(c.damaged.soup.points, c.damaged.soup.triangles,
                                        smc::Triangle_soup_origin{c.name});
       smc::Vertex_index_map_vector m12, m21;

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <fstream>
 #include <limits>
 #include <queue>
 #include <stdexcept>
@@ -30,6 +31,16 @@ struct Soup
   std::vector<Vec> points;
   std::vector<std::array<int, 3> > triangles;
 };
+
+/// The soup of anything with points() and triangles() of these types (a Triangle_soup).
+template <typename TriangleSoup>
+Soup soup_of(const TriangleSoup& s)
+{
+  Soup out;
+  out.points.assign(s.points().begin(), s.points().end());
+  out.triangles.assign(s.triangles().begin(), s.triangles().end());
+  return out;
+}
 
 /// A damaged mesh and its correspondence with the clean one.
 struct Damaged
@@ -264,6 +275,17 @@ inline Damaged collapse_faces(const Soup& clean, double fraction, double amount 
     }
   d.what = std::to_string(collapsed.size()) + " faces of zero area (of " + std::to_string(nf) + ")";
   return d;
+}
+
+/// Writes `s` as an OFF file (full double precision).
+inline void write_off(const std::string& file, const Soup& s)
+{
+  std::ofstream out(file);
+  out.precision(17);
+  out << "OFF\n" << s.points.size() << " " << s.triangles.size() << " 0\n";
+  for(const auto& p : s.points) out << p[0] << " " << p[1] << " " << p[2] << "\n";
+  for(const auto& t : s.triangles) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  if(!out) throw std::runtime_error("cannot write " + file);
 }
 
 } // namespace smc_damage

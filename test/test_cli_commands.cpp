@@ -286,18 +286,11 @@ BOOST_AUTO_TEST_CASE(match_handles_and_reports_damaged_meshes)
 {
   const Cli_pair& p = cli_pair();
   const smc::Triangle_soup clean = smc::read_triangle_soup(p.b);
-  smc_damage::Soup soup;
-  soup.points = clean.points();
-  soup.triangles = clean.triangles();
+  const smc_damage::Soup soup = smc_damage::soup_of(clean);
   const smc_damage::Damaged flat = smc_damage::collapse_faces(soup, 0.01);
   const smc_damage::Damaged d = smc_damage::add_fin(flat.soup, soup.triangles.size() / 2);
   const std::size_t n2 = d.soup.points.size(), degenerate = std::size_t(std::lround(0.01 * double(soup.triangles.size())));
-  std::ofstream off(in_scratch("damaged.off"));
-  off.precision(17);
-  off << "OFF\n" << n2 << " " << d.soup.triangles.size() << " 0\n";
-  for(const auto& q : d.soup.points) off << q[0] << " " << q[1] << " " << q[2] << "\n";
-  for(const auto& t : d.soup.triangles) off << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
-  off.close();
+  smc_damage::write_off(in_scratch("damaged.off"), d.soup);
   const Run r = comap("match " + p.a + " " + in_scratch("damaged.off") + " --verbose --out-12 " +
                       in_scratch("x12.map") + " --out-21 " + in_scratch("x21.map") + " --stats " +
                       in_scratch("damaged.json") + fast_options());

@@ -925,9 +925,7 @@ BOOST_AUTO_TEST_CASE(damaged_targets_are_matched)
   const smc::Map_evaluator<> on1(p.m1), on2(p.m2);
   const smc::Matching_settings fast = fast_settings();
   const smc::Triangle_soup soup1 = soup_of(p.m1), soup2 = soup_of(p.m2);
-  smc_damage::Soup clean;
-  clean.points = soup2.points();
-  clean.triangles = soup2.triangles();
+  const smc_damage::Soup clean = smc_damage::soup_of(soup2);
   struct Case
   {
     const char* name;
