@@ -215,8 +215,8 @@ inline double seconds_since(std::chrono::steady_clock::time_point t)
 }
 
 /// Checks that `given` is a spectrum of `mesh` from which the first `k` eigenpairs can be taken
-/// for settings `s`: same vertices, same vertex areas (the lumped mass, which intrinsic flips do
-/// not change), at least `k` eigenpairs, same operator.
+/// for settings `s`: same vertices, same vertex areas (internal::laplacian_mass(), which
+/// intrinsic flips do not change), at least `k` eigenpairs, same operator.
 inline void check_precomputed_spectrum(const Laplace_beltrami_spectrum& given, const Indexed_mesh& mesh, int k,
                                        const Shape_settings& s)
 {
@@ -231,17 +231,12 @@ inline void check_precomputed_spectrum(const Laplace_beltrami_spectrum& given, c
   if(given.uses_intrinsic_delaunay() != s.use_intrinsic_delaunay)
     throw Invalid_parameter_error(what + (given.uses_intrinsic_delaunay() ? "computed" : "not computed") +
                                   " on the intrinsic Delaunay triangulation, unlike use_intrinsic_delaunay");
-  std::vector<double> area(static_cast<std::size_t>(n), 0.0);
-  for(int f = 0; f < mesh.number_of_triangles(); ++f)
-    for(int c = 0; c < 3; ++c) area[std::size_t(mesh.triangles(f, c))] += mesh.triangle_areas[std::size_t(f)] / 3;
-  // Faces of zero area: the mass is that of the mollified triangles (laplacian.h), within a
-  // small fraction of the mean vertex area of the input ones.
-  const double slack = mesh.degenerate_faces.empty() ? 1e-12 : 1e-3 / n;
+  // The operators' own mass: of the mollified tufted cover on a mesh with faces of zero area.
+  const Eigen::VectorXd area = internal::laplacian_mass(mesh);
   for(int v = 0; v < n; ++v)
-    if(!(std::abs(given.mass()[v] - area[std::size_t(v)]) <=
-         1e-9 * area[std::size_t(v)] + slack * mesh.total_area))
+    if(!(std::abs(given.mass()[v] - area[v]) <= 1e-9 * area[v] + 1e-12 * mesh.total_area))
       throw Invalid_parameter_error(what + "not a spectrum of this mesh (vertex " + std::to_string(v) +
-                                    " has area " + std::to_string(area[std::size_t(v)]) + ", mass " +
+                                    " has area " + std::to_string(area[v]) + ", mass " +
                                     std::to_string(given.mass()[v]) + " in the spectrum)");
 }
 

@@ -85,7 +85,53 @@ inline Eigen::VectorXd lumped_mass(const Indexed_mesh& m)
   return mass;
 }
 
-inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m, double mollification = 1e-5,
+/// The margin of the intrinsic mollification of the tufted Laplacian, relative to the mean edge
+/// length (Sharp and Crane 2020 use 1e-5 too).
+constexpr double default_mollification = 1e-5;
+
+/// The tufted cover of a mesh (tufted_cover()) after intrinsic mollification
+/// (mollify_edge_lengths()) with a margin of `mollification` times its mean edge length, and the
+/// lumped mass of the operators built on it: that of the input triangles, or of the mollified
+/// ones when the mollification lengthened the edges (then no vertex has zero mass). `added` is the
+/// length added to every edge.
+struct Mollified_tufted_cover
+{
+  Intrinsic_triangulation triangulation;
+  Eigen::VectorXd mass;
+  double added = 0;
+};
+
+inline Mollified_tufted_cover mollified_tufted_cover(const Indexed_mesh& m, double mollification)
+{
+  Mollified_tufted_cover out;
+  Intrinsic_triangulation& t = out.triangulation;
+  t = tufted_cover(m);
+  double mean_length = 0;
+  for(double l : t.length) mean_length += l;
+  mean_length /= double(std::max<std::size_t>(t.length.size(), 1));
+  out.added = mollify_edge_lengths(t, mollification * mean_length);
+  if(out.added > 0)
+  {
+    // Each triangle of the mesh is twice in the cover: half of the cover's lumped mass.
+    out.mass = Eigen::VectorXd::Zero(m.number_of_vertices());
+    for(int f = 0; f < t.number_of_triangles(); ++f)
+      for(int c = 0; c < 3; ++c) out.mass[t.origin[std::size_t(3 * f + c)]] += t.triangle_area(f) / 6.0;
+  }
+  else
+    out.mass = lumped_mass(m);
+  return out;
+}
+
+/// The mass (diagonal of M) of laplace_beltrami_matrices(m, ...): the lumped mass of the input
+/// triangles, or of the mollified tufted cover on a mesh that needs it
+/// (Indexed_mesh::needs_tufted_cover()); intrinsic flips do not change it.
+inline Eigen::VectorXd laplacian_mass(const Indexed_mesh& m)
+{
+  return m.needs_tufted_cover() ? mollified_tufted_cover(m, default_mollification).mass : lumped_mass(m);
+}
+
+inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m,
+                                                                  double mollification = default_mollification,
                                                                   double* epsilon = nullptr,
                                                                   bool use_intrinsic_delaunay = true);
 
@@ -97,7 +143,8 @@ inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_
 inline Laplace_beltrami_matrices laplace_beltrami_matrices(const Indexed_mesh& m,
                                                            bool use_intrinsic_delaunay)
 {
-  if(m.needs_tufted_cover()) return tufted_laplace_beltrami_matrices(m, 1e-5, nullptr, use_intrinsic_delaunay);
+  if(m.needs_tufted_cover())
+    return tufted_laplace_beltrami_matrices(m, default_mollification, nullptr, use_intrinsic_delaunay);
   Intrinsic_triangulation t = make_intrinsic_triangulation(m);
   Laplace_beltrami_matrices out;
   if(use_intrinsic_delaunay) out.number_of_flips = make_intrinsic_delaunay(t);
@@ -128,23 +175,12 @@ inline Laplace_beltrami_matrices laplace_beltrami_matrices(const Indexed_mesh& m
 inline Laplace_beltrami_matrices tufted_laplace_beltrami_matrices(const Indexed_mesh& m, double mollification,
                                                                   double* epsilon, bool use_intrinsic_delaunay)
 {
-  Intrinsic_triangulation t = tufted_cover(m);
-  double mean_length = 0;
-  for(double l : t.length) mean_length += l;
-  mean_length /= double(std::max<std::size_t>(t.length.size(), 1));
-  const double added = mollify_edge_lengths(t, mollification * mean_length);
-  if(epsilon) *epsilon = added;
+  Mollified_tufted_cover cover = mollified_tufted_cover(m, mollification);
+  Intrinsic_triangulation& t = cover.triangulation;
+  if(epsilon) *epsilon = cover.added;
   Laplace_beltrami_matrices out;
   const int n = m.number_of_vertices();
-  if(added > 0)
-  {
-    // Each triangle of the mesh is twice in the cover: half of the cover's lumped mass.
-    out.mass = Eigen::VectorXd::Zero(n);
-    for(int f = 0; f < t.number_of_triangles(); ++f)
-      for(int c = 0; c < 3; ++c) out.mass[t.origin[std::size_t(3 * f + c)]] += t.triangle_area(f) / 6.0;
-  }
-  else
-    out.mass = lumped_mass(m);
+  out.mass = std::move(cover.mass);
   if(use_intrinsic_delaunay) out.number_of_flips = make_intrinsic_delaunay(t);
   out.stiffness_matrix = 0.5 * cotangent_stiffness_matrix(t);
   out.stiffness_matrix.makeCompressed();

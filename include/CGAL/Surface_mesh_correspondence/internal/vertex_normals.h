@@ -38,8 +38,12 @@ inline Indexed_mesh::Points vertex_normals(const Indexed_mesh& m)
       if(oriented[std::size_t(m.incident_triangles[k])]) return true;
     return false;
   };
-  std::vector<char> restricted(std::size_t(n), 0);
-  for(int v = 0; v < n; ++v) restricted[std::size_t(v)] = only_oriented(v);
+  std::vector<char> restricted;  // empty when every triangle is oriented
+  if(!oriented.empty())
+  {
+    restricted.resize(std::size_t(n));
+    for(int v = 0; v < n; ++v) restricted[std::size_t(v)] = only_oriented(v);
+  }
   for(int f = 0; f < m.number_of_triangles(); ++f)
   {
     const int a = m.triangles(f, 0), b = m.triangles(f, 1), c = m.triangles(f, 2);
@@ -56,7 +60,7 @@ inline Indexed_mesh::Points vertex_normals(const Indexed_mesh& m)
     // Relative test: the sum is tiny compared with the incident triangle areas when it cancels.
     double scale = 0;
     for(int k = m.triangle_offsets[v]; k < m.triangle_offsets[v + 1]; ++k)
-      if(!restricted[std::size_t(v)] || oriented[std::size_t(m.incident_triangles[k])])
+      if(restricted.empty() || !restricted[std::size_t(v)] || oriented[std::size_t(m.incident_triangles[k])])
         scale += 2 * m.triangle_areas[m.incident_triangles[k]];
     if(length > 1e-12 * scale && length > 0)
       normals.row(v) /= length;
