@@ -1197,6 +1197,24 @@ BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
   BOOST_TEST(above.extremities_1 == 0);
   BOOST_TEST(above.sample_distortion > 0);
   BOOST_TEST(fraction_equal(b12, a12) == 1.0);
+  // The tolerance against the descriptor maps: without it a hypothesis must distort the samples
+  // less; with a huge one the hypothesis always replaces them, however distorted.
+  for(const double tolerance : {0.0, 1e6})
+  {
+    smc::Matching_settings settings;
+    settings.set("extremity_hypothesis_threshold", 0.0);
+    settings.set("extremity_hypothesis_tolerance", tolerance);
+    std::vector<std::size_t> t12, t21;
+    const smc::Automatic_initialization_result t =
+        smc::automatic_initial_maps(f.pair.m1, f.pair.m2, t12, t21, params::matching_settings(settings));
+    BOOST_TEST_MESSAGE("tolerance " << tolerance << ": distortion " << t.sample_distortion_before << " -> "
+                       << t.sample_distortion << ", hypothesis " << t.extremity_hypothesis);
+    BOOST_TEST(t.extremity_hypotheses == 1);
+    if(tolerance == 0)
+      BOOST_TEST(t.sample_distortion <= t.sample_distortion_before);
+    else
+      BOOST_TEST(t.extremity_hypothesis == 1);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_named)
@@ -1223,6 +1241,8 @@ BOOST_AUTO_TEST_CASE(bad_input_is_named)
                                                 params::initialization_fits(smc::Fit_list{{50, 0.03, 0.3}}, params::zoomout_final_size(40))),
                     smc::Invalid_parameter_error);
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_threshold(-1.0)),
+                    smc::Invalid_parameter_error);
+  BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_tolerance(-0.5)),
                     smc::Invalid_parameter_error);
   // Landmarks out of range.
   const std::vector<std::pair<std::size_t, std::size_t> > bad = {{0, num_vertices(f.pair.m2)}};

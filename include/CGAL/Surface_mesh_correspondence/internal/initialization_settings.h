@@ -135,6 +135,9 @@ struct Initialization_settings
   /// the maps is above extremity_hypothesis_threshold (0: none; see try_extremity_hypotheses()).
   int extremity_hypotheses = matching_defaults().extremity_hypotheses;
   double extremity_hypothesis_threshold = matching_defaults().extremity_hypothesis_threshold;
+  /// A hypothesis replaces the descriptor-based maps when its maps distort the samples at most
+  /// this fraction more than they do (see try_extremity_hypotheses()).
+  double extremity_hypothesis_tolerance = matching_defaults().extremity_hypothesis_tolerance;
   /// The extremities: local maxima of the mean geodesic distance to this many distortion samples
   /// within this radius (relative to the square root of the area), at most this many per shape.
   int extremity_sources = 32;
@@ -199,6 +202,7 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.distortion_repair_passes = m.number_of_distortion_repair_passes;
   s.extremity_hypotheses = m.extremity_hypotheses;
   s.extremity_hypothesis_threshold = m.extremity_hypothesis_threshold;
+  s.extremity_hypothesis_tolerance = m.extremity_hypothesis_tolerance;
   s.tear_threshold = m.tear_threshold;
   s.tear_min_fraction = m.tear_area_fraction;
   s.tear_repair_distortion_tolerance = m.tear_repair_distortion_tolerance;
@@ -288,6 +292,9 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.extremity_hypotheses < 0) fail("extremity_hypotheses must be non-negative");
   if(!(s.extremity_hypothesis_threshold >= 0) || !std::isfinite(s.extremity_hypothesis_threshold))
     fail("extremity_hypothesis_threshold = " + std::to_string(s.extremity_hypothesis_threshold) +
+         " must be finite and non-negative");
+  if(!(s.extremity_hypothesis_tolerance >= 0) || !std::isfinite(s.extremity_hypothesis_tolerance))
+    fail("extremity_hypothesis_tolerance = " + std::to_string(s.extremity_hypothesis_tolerance) +
          " must be finite and non-negative");
   if(s.extremity_sources < 1 || s.maximum_extremities < 0 || !(s.extremity_radius > 0))
     fail("extremity_sources and extremity_radius must be positive, maximum_extremities non-negative");

@@ -97,9 +97,12 @@
     "distort the sample distances less (0: none)")                                                                 \
   X(extremity_hypotheses, int, 1, 1, range_between(0, 100), initialization,                                       \
     "maps that distort the sample distances more than extremity_hypothesis_threshold: passes run from this many "  \
-    "assignments of the shapes' extremities as landmarks, kept when less distorted (0: none)")                    \
+    "assignments of the shapes' extremities as landmarks, the least distorted kept (0: none)")                    \
   X(extremity_hypothesis_threshold, double, 0.1, 0.1, range_at_least(0), initialization,                          \
     "sample distortion above which the extremity hypotheses run (pairs far from isometric)")                      \
+  X(extremity_hypothesis_tolerance, double, 0.5, 0.5, range_at_least(0), initialization,                          \
+    "the maps of an extremity hypothesis replace the descriptor-based maps when they distort the sample "          \
+    "distances at most this fraction more")                                                                       \
   X(tear_threshold, double, 0.06, 0.06, range_above(0), initialization,                                            \
     "a source edge is torn when its images are this far apart (relative to the square root of the target's "      \
     "area)")                                                                                                       \
