@@ -1122,7 +1122,12 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_keep_the_proportions)
   for(int i = 0; i < 5; ++i)
     for(int j = 0; j < 5; ++j) part(i, j) = 0.6 * (points[std::size_t(subset[std::size_t(i)])] - points[std::size_t(subset[std::size_t(j)])]).norm();
   // Reference ranking by brute force over the 7!/2! ordered choices, with its own score.
-  std::vector<double> reference;
+  // Descriptor distances between the extremities, for the second ranking below.
+  Eigen::MatrixXd descriptors(5, 7);
+  for(int i = 0; i < 5; ++i)
+    for(int j = 0; j < 7; ++j) descriptors(i, j) = u(rng);
+  const double weight = 0.3;
+  std::vector<double> reference, with_descriptors;
   std::vector<int> order = {0, 1, 2, 3, 4, 5, 6};
   do
   {
@@ -1139,9 +1144,13 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_keep_the_proportions)
       for(int j = i + 1; j < 5; ++j)
         total += std::abs(std::log((part(i, j) / s1) / (all(order[std::size_t(i)], order[std::size_t(j)]) / s2)));
     reference.push_back(total / 10.0);
+    double descriptor = 0;
+    for(int i = 0; i < 5; ++i) descriptor += descriptors(i, order[std::size_t(i)]);
+    with_descriptors.push_back(total / 10.0 + weight * descriptor / 5.0);
   } while(std::next_permutation(order.begin(), order.end()));
   BOOST_TEST_REQUIRE(reference.size() == 2520u);
   std::sort(reference.begin(), reference.end());
+  std::sort(with_descriptors.begin(), with_descriptors.end());
   for(bool forward : {true, false})
   {
     const std::vector<smci::Extremity_assignment> a =
@@ -1156,7 +1165,36 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_keep_the_proportions)
       BOOST_TEST((a[0].pairs[std::size_t(i)] == expected));
     }
     for(std::size_t k = 0; k < a.size(); ++k) BOOST_TEST(std::abs(a[k].score - reference[k]) < 1e-12);
+    // With the descriptor term, the ranking of the brute force with the same term (the matrix is
+    // indexed by mesh 1's extremity, then mesh 2's).
+    const std::vector<smci::Extremity_assignment> d =
+        forward ? smci::extremity_assignments(part, all, 12, descriptors, weight)
+                : smci::extremity_assignments(all, part, 12, Eigen::MatrixXd(descriptors.transpose()), weight);
+    BOOST_TEST_REQUIRE(d.size() == 12u);
+    for(std::size_t k = 0; k < d.size(); ++k) BOOST_TEST(std::abs(d[k].score - with_descriptors[k]) < 1e-12);
+    for(const smci::Extremity_assignment& x : d)
+    {
+      double expected = 0;
+      for(const auto& p : x.pairs)
+        expected += forward ? descriptors(p.first, p.second) : descriptors(p.second, p.first);
+      std::vector<int> a1, a2;
+      for(const auto& p : x.pairs)
+      {
+        a1.push_back(p.first);
+        a2.push_back(p.second);
+      }
+      const double proportions = forward ? smci::proportion_distortion(part, all, a1, a2)
+                                         : smci::proportion_distortion(all, part, a1, a2);
+      BOOST_TEST(std::abs(x.score - (proportions + weight * expected / 5.0)) < 1e-12);
+    }
   }
+  const Eigen::MatrixXd wks1 = (Eigen::MatrixXd(3, 2) << 1, 2, 0, 0, 3, 1).finished();
+  const Eigen::MatrixXd wks2 = (Eigen::MatrixXd(2, 2) << 1, 2, 0, 4).finished();
+  const Eigen::MatrixXd dd = smci::extremity_descriptor_distances(wks1, {2, 0}, wks2, {0, 1});
+  // |(3,1)-(1,2)| = 3 over 4 + 3; |(3,1)-(0,4)| = 6 over 4 + 4; the same vertex: 0.
+  BOOST_TEST(std::abs(dd(0, 0) - 3.0 / 7.0) < 1e-15);
+  BOOST_TEST(std::abs(dd(0, 1) - 6.0 / 8.0) < 1e-15);
+  BOOST_TEST(dd(1, 0) == 0.0);
   // Fewer than three extremities on a side: no hypothesis.
   BOOST_TEST(smci::extremity_assignments(part.topLeftCorner(2, 2), all, 4).empty());
 }

@@ -10,6 +10,7 @@
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
 
 #include <CGAL/Surface_mesh_correspondence/Automatic_initialization_result.h>
+#include <CGAL/Surface_mesh_correspondence/wave_kernel_signature.h>
 #include <CGAL/Surface_mesh_correspondence/internal/Indexed_mesh.h>
 #include <CGAL/Surface_mesh_correspondence/internal/candidate_maps.h>
 #include <CGAL/Surface_mesh_correspondence/internal/fast_marching.h>
@@ -144,12 +145,16 @@ inline double proportion_distortion(const Eigen::MatrixXd& D1, const Eigen::Matr
   return total / double(count);
 }
 
-/// The `count` assignments of lowest proportion_distortion() among the injective assignments of
-/// every extremity of the shape with fewer extremities to those of the other (all of them are
-/// enumerated: 7! = 5040 for seven extremities on each shape), by increasing score (ties in
-/// enumeration order). Empty when either shape has fewer than three extremities.
+/// The `count` assignments of lowest score among the injective assignments of every extremity of
+/// the shape with fewer extremities to those of the other (all of them are enumerated: 7! = 5040
+/// for seven extremities on each shape), by increasing score (ties in enumeration order). The
+/// score is proportion_distortion(), plus `descriptor_weight` times the mean of
+/// `descriptor_distances(i, j)` over the matched pairs (i of mesh 1, j of mesh 2) when that matrix
+/// is given (not empty). Empty when either shape has fewer than three extremities.
 inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::MatrixXd& D1, const Eigen::MatrixXd& D2,
-                                                               std::size_t count)
+                                                               std::size_t count,
+                                                               const Eigen::MatrixXd& descriptor_distances = {},
+                                                               double descriptor_weight = 0)
 {
   std::vector<Extremity_assignment> out;
   const int n1 = int(D1.rows()), n2 = int(D2.rows());
@@ -168,6 +173,12 @@ inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::Matr
       a.score = forward ? proportion_distortion(D1, D2, fixed, chosen) : proportion_distortion(D1, D2, chosen, fixed);
       for(int i = 0; i < k; ++i)
         a.pairs.emplace_back(forward ? i : chosen[std::size_t(i)], forward ? chosen[std::size_t(i)] : i);
+      if(descriptor_distances.size() > 0)
+      {
+        double total = 0;
+        for(const auto& p : a.pairs) total += descriptor_distances(p.first, p.second);
+        a.score += descriptor_weight * total / double(k);
+      }
       all.push_back(std::move(a));
       return;
     }
@@ -186,6 +197,23 @@ inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::Matr
                    [](const Extremity_assignment& x, const Extremity_assignment& y) { return x.score < y.score; });
   all.resize(std::min(all.size(), count));
   return all;
+}
+
+/// The descriptor distances between the extremities `v1` of one mesh and `v2` of the other: for
+/// rows u of `F1` and v of `F2` (non-negative descriptors such as the WKS), sum |u - v| over
+/// sum (|u| + |v|), in [0, 1].
+inline Eigen::MatrixXd extremity_descriptor_distances(const Eigen::MatrixXd& F1, const std::vector<int>& v1,
+                                                      const Eigen::MatrixXd& F2, const std::vector<int>& v2)
+{
+  Eigen::MatrixXd out(Eigen::Index(v1.size()), Eigen::Index(v2.size()));
+  for(std::size_t i = 0; i < v1.size(); ++i)
+    for(std::size_t j = 0; j < v2.size(); ++j)
+    {
+      const auto u = F1.row(v1[i]), v = F2.row(v2[j]);
+      const double sum = u.cwiseAbs().sum() + v.cwiseAbs().sum();
+      out(Eigen::Index(i), Eigen::Index(j)) = sum > 0 ? (u - v).cwiseAbs().sum() / sum : 0.0;
+    }
+  return out;
 }
 
 /// The extremity hypotheses of automatic_initial_maps(): when the sample distortion of the maps
@@ -227,10 +255,20 @@ Automatic_initialization_result try_extremity_hypotheses(const Initialization_sh
                                                                               s.extremity_sources));
     out = shape_extremities(*shape.mesh, sampling.geodesics, sources, s.extremity_radius, s.maximum_extremities);
   };
-  invoke_both<ConcurrencyTag>([&] { extremities(shape1, cache.first, e1); },
-                              [&] { extremities(shape2, cache.second, e2); });
+  Eigen::MatrixXd wks1, wks2;
+  invoke_both<ConcurrencyTag>(
+      [&] {
+        extremities(shape1, cache.first, e1);
+        wks1 = wave_kernel_signature(*shape1.spectrum);
+      },
+      [&] {
+        extremities(shape2, cache.second, e2);
+        wks2 = wave_kernel_signature(*shape2.spectrum);
+      });
   const std::vector<Extremity_assignment> assignments =
-      extremity_assignments(e1.distances, e2.distances, std::size_t(s.extremity_hypotheses));
+      extremity_assignments(e1.distances, e2.distances, std::size_t(s.extremity_hypotheses),
+                            extremity_descriptor_distances(wks1, e1.vertices, wks2, e2.vertices),
+                            s.extremity_descriptor_weight);
   result.extremities_1 = int(e1.vertices.size());
   result.extremities_2 = int(e2.vertices.size());
   if(s.verbose)

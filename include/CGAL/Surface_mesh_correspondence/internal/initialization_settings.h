@@ -143,6 +143,10 @@ struct Initialization_settings
   int extremity_sources = 32;
   double extremity_radius = 0.15;
   int maximum_extremities = 7;
+  /// The weight of the WKS distance between matched extremities in the score of an assignment
+  /// (extremity_assignments()): among assignments that keep the proportions alike, it prefers
+  /// hands matched to hands rather than to feet.
+  double extremity_descriptor_weight = 0.1;
   /// Passes in all (the first one, tear repair and distortion repair): the distortion repair runs
   /// only while this allows.
   int maximum_passes = 3;
