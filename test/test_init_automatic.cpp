@@ -1188,13 +1188,15 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_keep_the_proportions)
       BOOST_TEST(std::abs(x.score - (proportions + weight * expected / 5.0)) < 1e-12);
     }
   }
-  const Eigen::MatrixXd wks1 = (Eigen::MatrixXd(3, 2) << 1, 2, 0, 0, 3, 1).finished();
+  const Eigen::MatrixXd wks1 = (Eigen::MatrixXd(2, 2) << 3, 1, 1, 2).finished();
   const Eigen::MatrixXd wks2 = (Eigen::MatrixXd(2, 2) << 1, 2, 0, 4).finished();
-  const Eigen::MatrixXd dd = smci::extremity_descriptor_distances(wks1, {2, 0}, wks2, {0, 1});
-  // |(3,1)-(1,2)| = 3 over 4 + 3; |(3,1)-(0,4)| = 6 over 4 + 4; the same vertex: 0.
+  const Eigen::MatrixXd dd = smci::extremity_descriptor_distances(wks1, wks2);
+  // |(3,1)-(1,2)| = 3 over 4 + 3; |(3,1)-(0,4)| = 6 over 4 + 4; equal rows: 0;
+  // |(1,2)-(0,4)| = 3 over 3 + 4.
   BOOST_TEST(std::abs(dd(0, 0) - 3.0 / 7.0) < 1e-15);
   BOOST_TEST(std::abs(dd(0, 1) - 6.0 / 8.0) < 1e-15);
   BOOST_TEST(dd(1, 0) == 0.0);
+  BOOST_TEST(std::abs(dd(1, 1) - 3.0 / 7.0) < 1e-15);
   // Fewer than three extremities on a side: no hypothesis.
   BOOST_TEST(smci::extremity_assignments(part.topLeftCorner(2, 2), all, 4).empty());
 }

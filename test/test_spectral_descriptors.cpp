@@ -17,6 +17,7 @@
 #include <array>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace smc = CGAL::Surface_mesh_correspondence;
 namespace params = CGAL::Surface_mesh_correspondence::parameters;
@@ -308,6 +309,26 @@ BOOST_AUTO_TEST_CASE(parallel_and_convenience_overloads_agree)
   }
   BOOST_TEST(relative_difference(hp_in_m, h) < 1e-8);
   BOOST_TEST(relative_difference(wp_in_m, w) < 1e-8);
+}
+
+BOOST_AUTO_TEST_CASE(wks_rows_of_selected_vertices)
+{
+  // The rows computed alone are those of the whole signature, with all the eigenpairs or the
+  // leading ones, in the order asked, repeated or not.
+  const Mesh m = jittered_sphere(3, 0.3);
+  const smc::Laplace_beltrami_spectrum s(m, params::number_of_eigenpairs(40));
+  const std::vector<int> vertices = {17, 0, int(num_vertices(m)) - 1, 17};
+  for(int k : {40, 12})
+  {
+    const auto np = params::number_of_eigenpairs(k, params::number_of_wks_energies(30));
+    const Eigen::MatrixXd all = smc::wave_kernel_signature(s, np);
+    const Eigen::MatrixXd rows = smc::internal::wave_kernel_signature_rows(s, vertices, np);
+    BOOST_TEST(rows.rows() == 4);
+    BOOST_TEST(rows.cols() == 30);
+    for(std::size_t i = 0; i < vertices.size(); ++i)
+      BOOST_TEST((rows.row(Eigen::Index(i)) - all.row(vertices[i])).norm() <= 1e-12 * all.row(vertices[i]).norm());
+  }
+  BOOST_TEST(smc::internal::wave_kernel_signature_rows(s, {}).rows() == 0);
 }
 
 BOOST_AUTO_TEST_CASE(bad_parameters_are_reported)

@@ -18,7 +18,9 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace CGAL {
 namespace Surface_mesh_correspondence {
@@ -146,6 +148,40 @@ wave_kernel_signature_energies(const Laplace_beltrami_spectrum& spectrum,
   return out;
 }
 
+namespace internal {
+
+/// The k x d weights of the normalised WKS of wave_kernel_signature(spectrum, np): the filters
+/// g_j(e_c) of the unit-area eigenvalues, each column divided by its sum.
+template <typename NamedParameters>
+Eigen::MatrixXd normalized_wave_kernel_weights(const Laplace_beltrami_spectrum& spectrum, const NamedParameters& np)
+{
+  const Wave_kernel_signature_energies energies = wave_kernel_signature_energies(spectrum, np);
+  const int k = signature_eigenpairs(spectrum, np, "wave kernel signature");
+  Eigen::MatrixXd weights =
+      wave_kernel_weights(spectrum.eigenvalues().head(k) * spectrum.total_area(), energies.log_energies, energies.sigma);
+  for(Eigen::Index c = 0; c < weights.cols(); ++c)
+  {
+    const double normaliser = weights.col(c).sum();
+    if(normaliser > 0) weights.col(c) /= normaliser;
+  }
+  return weights;
+}
+
+/// The rows of wave_kernel_signature(spectrum, np) at `vertices` (indices of the spectrum's
+/// vertices, in range), computed from those rows of the eigenvectors alone.
+template <typename NamedParameters = parameters::Default_named_parameters>
+Eigen::MatrixXd wave_kernel_signature_rows(const Laplace_beltrami_spectrum& spectrum, const std::vector<int>& vertices,
+                                           const NamedParameters& np = parameters::default_values())
+{
+  const Eigen::MatrixXd weights = normalized_wave_kernel_weights(spectrum, np);
+  Eigen::MatrixXd rows(Eigen::Index(vertices.size()), weights.rows());
+  for(std::size_t i = 0; i < vertices.size(); ++i)
+    rows.row(Eigen::Index(i)) = spectrum.eigenvectors().row(vertices[i]).head(weights.rows());
+  return squared_eigenvector_transform<CGAL::Sequential_tag>(rows, weights, spectrum.total_area());
+}
+
+} // namespace internal
+
 /// \ingroup PkgSurfaceMeshCorrespondenceRef
 /// The scale-invariant, normalised Wave Kernel Signature (Aubry, Schlickewei and Cremers 2011)
 /// of every vertex.
@@ -177,18 +213,8 @@ template <typename ConcurrencyTag = CGAL::Sequential_tag,
 Eigen::MatrixXd wave_kernel_signature(const Laplace_beltrami_spectrum& spectrum,
                                       const NamedParameters& np = parameters::default_values())
 {
-  const Wave_kernel_signature_energies energies = wave_kernel_signature_energies(spectrum, np);
-  const double area = spectrum.total_area();
-  const int k = internal::signature_eigenpairs(spectrum, np, "wave kernel signature");
-  Eigen::MatrixXd weights = internal::wave_kernel_weights(spectrum.eigenvalues().head(k) * area,
-                                                          energies.log_energies, energies.sigma);
-  for(Eigen::Index c = 0; c < weights.cols(); ++c)
-  {
-    const double normaliser = weights.col(c).sum();
-    if(normaliser > 0) weights.col(c) /= normaliser;
-  }
-  return internal::squared_eigenvector_transform<ConcurrencyTag>(spectrum.eigenvectors(), weights,
-                                                                 area);
+  return internal::squared_eigenvector_transform<ConcurrencyTag>(
+      spectrum.eigenvectors(), internal::normalized_wave_kernel_weights(spectrum, np), spectrum.total_area());
 }
 
 /// \ingroup PkgSurfaceMeshCorrespondenceRef

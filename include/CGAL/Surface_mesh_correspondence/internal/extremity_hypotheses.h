@@ -199,19 +199,18 @@ inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::Matr
   return all;
 }
 
-/// The descriptor distances between the extremities `v1` of one mesh and `v2` of the other: for
-/// rows u of `F1` and v of `F2` (non-negative descriptors such as the WKS), sum |u - v| over
+/// The descriptor distances between the rows of `F1` (the extremities of one mesh) and those of
+/// `F2` (the other's): for non-negative descriptors u and v such as the WKS, sum |u - v| over
 /// sum (|u| + |v|), in [0, 1].
-inline Eigen::MatrixXd extremity_descriptor_distances(const Eigen::MatrixXd& F1, const std::vector<int>& v1,
-                                                      const Eigen::MatrixXd& F2, const std::vector<int>& v2)
+inline Eigen::MatrixXd extremity_descriptor_distances(const Eigen::MatrixXd& F1, const Eigen::MatrixXd& F2)
 {
-  Eigen::MatrixXd out(Eigen::Index(v1.size()), Eigen::Index(v2.size()));
-  for(std::size_t i = 0; i < v1.size(); ++i)
-    for(std::size_t j = 0; j < v2.size(); ++j)
+  Eigen::MatrixXd out(F1.rows(), F2.rows());
+  for(Eigen::Index i = 0; i < F1.rows(); ++i)
+    for(Eigen::Index j = 0; j < F2.rows(); ++j)
     {
-      const auto u = F1.row(v1[i]), v = F2.row(v2[j]);
+      const auto u = F1.row(i), v = F2.row(j);
       const double sum = u.cwiseAbs().sum() + v.cwiseAbs().sum();
-      out(Eigen::Index(i), Eigen::Index(j)) = sum > 0 ? (u - v).cwiseAbs().sum() / sum : 0.0;
+      out(i, j) = sum > 0 ? (u - v).cwiseAbs().sum() / sum : 0.0;
     }
   return out;
 }
@@ -228,8 +227,8 @@ inline Eigen::MatrixXd extremity_descriptor_distances(const Eigen::MatrixXd& F1,
 /// and the proportions of their distances survive the change of species. Such a swap of limbs
 /// can keep the sample distances better than the true map (the gorilla's arms are as long as the
 /// man's legs), hence the tolerance: on three pairs of the TOSCA_nonIso subset the hypothesis
-/// distorted the samples 28-39% more than the wholly wrong descriptor maps, and its final maps had
-/// a third to three quarters of their error.
+/// (scored by the proportions alone) distorted the samples 28-39% more than the wholly wrong
+/// descriptor maps, and its final maps had a third to three quarters of their error.
 template <typename ConcurrencyTag>
 Automatic_initialization_result try_extremity_hypotheses(const Initialization_shape& shape1,
                                                          const Initialization_shape& shape2,
@@ -255,20 +254,14 @@ Automatic_initialization_result try_extremity_hypotheses(const Initialization_sh
                                                                               s.extremity_sources));
     out = shape_extremities(*shape.mesh, sampling.geodesics, sources, s.extremity_radius, s.maximum_extremities);
   };
-  Eigen::MatrixXd wks1, wks2;
-  invoke_both<ConcurrencyTag>(
-      [&] {
-        extremities(shape1, cache.first, e1);
-        wks1 = wave_kernel_signature(*shape1.spectrum);
-      },
-      [&] {
-        extremities(shape2, cache.second, e2);
-        wks2 = wave_kernel_signature(*shape2.spectrum);
-      });
-  const std::vector<Extremity_assignment> assignments =
-      extremity_assignments(e1.distances, e2.distances, std::size_t(s.extremity_hypotheses),
-                            extremity_descriptor_distances(wks1, e1.vertices, wks2, e2.vertices),
-                            s.extremity_descriptor_weight);
+  invoke_both<ConcurrencyTag>([&] { extremities(shape1, cache.first, e1); },
+                              [&] { extremities(shape2, cache.second, e2); });
+  // The WKS of the whole initialisation spectrum, at the extremities only.
+  const std::vector<Extremity_assignment> assignments = extremity_assignments(
+      e1.distances, e2.distances, std::size_t(s.extremity_hypotheses),
+      extremity_descriptor_distances(wave_kernel_signature_rows(*shape1.spectrum, e1.vertices),
+                                     wave_kernel_signature_rows(*shape2.spectrum, e2.vertices)),
+      s.extremity_descriptor_weight);
   result.extremities_1 = int(e1.vertices.size());
   result.extremities_2 = int(e2.vertices.size());
   if(s.verbose)
