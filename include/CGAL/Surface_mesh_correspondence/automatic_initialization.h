@@ -124,8 +124,10 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// distort those distances by more than 0.1 (`extremity_hypothesis_threshold`: pairs far from
 /// isometric, where every descriptor fit can be wrong as a whole) the extremity hypotheses: passes
 /// from assignments of the extremities of both shapes that keep the proportions of their geodesic
-/// distances, the least distorted maps kept. Finally the kept maps grow by the same coupled
-/// ZoomOut to `zoomout_final_size` (grow_initial_maps()).
+/// distances, the least distorted maps kept. When the first pass's maps are already above that
+/// threshold, the hypotheses run before the repairs, which then run only if the first maps are
+/// kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size`
+/// (grow_initial_maps()).
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
 /// orientations (signed volumes of opposite signs) the orientation term is reversed
@@ -184,8 +186,9 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     above the threshold (pairs far from isometric, e.g. a gorilla and a man), this many passes
 ///     from the best assignments of the shapes' extremities (tips of limbs, head, tail) as
 ///     landmarks, each with its tear repair, the least distorted maps kept (see
-///     try_extremity_hypotheses()); types `int` and `double`; defaults 1 and 0.1 (each hypothesis
-///     costs about one initialisation).
+///     try_extremity_hypotheses()); types `int` and `double`; defaults 2 and 0.1 (the best
+///     assignment and the next, usually its mirror twin; each hypothesis costs about one
+///     initialisation, and with `Parallel_tag` they run concurrently).
 ///   - `compare_with_automatic_maps`: repair_torn_maps() only (ignored here): whether the repaired
 ///     given maps compete with the automatic maps; type `bool`; default true.
 ///   - `automatic_maps_comparison_threshold`: repair_torn_maps() with the comparison and

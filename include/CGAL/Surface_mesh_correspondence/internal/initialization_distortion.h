@@ -271,6 +271,23 @@ struct Initialization_pass_cache
   bool ready = false;
   int number_of_samples = 0, distortion_count = 0;
   Initialization_sampling first, second;
+
+  /// A copy with the samplings but no cached fast marching row, for a pass that runs concurrently
+  /// with others (the row caches are not shared between threads).
+  Initialization_pass_cache copy_without_rows() const
+  {
+    Initialization_pass_cache c;
+    c.ready = ready;
+    c.number_of_samples = number_of_samples;
+    c.distortion_count = distortion_count;
+    for(auto from_to : {std::make_pair(&first, &c.first), std::make_pair(&second, &c.second)})
+    {
+      from_to.second->samples = from_to.first->samples;
+      from_to.second->geodesics = from_to.first->geodesics;
+      from_to.second->sample_distances = from_to.first->sample_distances;
+    }
+    return c;
+  }
 };
 
 /// Fills `cache` with the samplings of both shapes, unless it holds them for these settings.

@@ -95,7 +95,7 @@
   X(number_of_distortion_repair_passes, int, 0, 0, range_between(0, 100), initialization,                          \
     "distortion repair passes at most: maps recomputed with landmarks from their isometric core, kept when they "  \
     "distort the sample distances less (0: none)")                                                                 \
-  X(extremity_hypotheses, int, 1, 1, range_between(0, 100), initialization,                                       \
+  X(extremity_hypotheses, int, 2, 2, range_between(0, 100), initialization,                                       \
     "maps that distort the sample distances more than extremity_hypothesis_threshold: passes run from this many "  \
     "assignments of the shapes' extremities as landmarks, the least distorted kept (0: none)")                    \
   X(extremity_hypothesis_threshold, double, 0.1, 0.1, range_at_least(0), initialization,                          \
