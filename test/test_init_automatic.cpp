@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <random>
 #include <thread>
 #include <utility>
@@ -1243,30 +1244,30 @@ BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
   // torn fraction and the distortion reported before are those of the first maps (measured here
   // with no repair and the hypotheses off).
   BOOST_TEST(plain.passes == 2);
-  smc::Matching_settings one;
-  one.set("extremity_hypothesis_threshold", 0.0);
-  one.set("extremity_hypotheses", 1.0);
+  // Settings with some values changed.
+  const auto settings_with = [](std::initializer_list<std::pair<const char*, double> > changes) {
+    smc::Matching_settings settings;
+    for(const auto& c : changes) settings.set(c.first, c.second);
+    return settings;
+  };
   std::vector<std::size_t> o12, o21;
-  const smc::Automatic_initialization_result single =
-      smc::automatic_initial_maps(f.pair.m1, f.pair.m2, o12, o21, params::matching_settings(one));
+  const smc::Automatic_initialization_result single = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, o12, o21,
+      params::matching_settings(settings_with({{"extremity_hypothesis_threshold", 0.0}, {"extremity_hypotheses", 1.0}})));
   BOOST_TEST(single.extremity_hypothesis == 1);
   BOOST_TEST(single.passes == 2);
   BOOST_TEST(r.repair_passes == 0);
-  smc::Matching_settings first_only;
-  first_only.set("number_of_repair_passes", 0.0);
-  first_only.set("extremity_hypothesis_threshold", 1e6);
   std::vector<std::size_t> f12, f21;
-  const smc::Automatic_initialization_result first =
-      smc::automatic_initial_maps(f.pair.m1, f.pair.m2, f12, f21, params::matching_settings(first_only));
+  const smc::Automatic_initialization_result first = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, f12, f21,
+      params::matching_settings(settings_with({{"number_of_repair_passes", 0.0}, {"extremity_hypothesis_threshold", 1e6}})));
   BOOST_TEST(first.passes == 1);
   BOOST_TEST(r.sample_distortion_before == first.sample_distortion);
   BOOST_TEST(r.torn_fraction_before == first.torn_fraction_before);
   BOOST_TEST(r.torn_fraction_before > 0);
   // Two hypotheses (the best assignment and the next, here its mirror twin) run concurrently with
   // Parallel_tag, on their own pass caches: the same maps and choice as one after the other.
-  smc::Matching_settings two;
-  two.set("extremity_hypothesis_threshold", 0.0);
-  two.set("extremity_hypotheses", 2.0);
+  const smc::Matching_settings two = settings_with({{"extremity_hypothesis_threshold", 0.0}, {"extremity_hypotheses", 2.0}});
   std::vector<std::size_t> s12, s21;
   const smc::Automatic_initialization_result sequential =
       smc::automatic_initial_maps(f.pair.m1, f.pair.m2, s12, s21, params::matching_settings(two));

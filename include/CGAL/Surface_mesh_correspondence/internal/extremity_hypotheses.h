@@ -310,22 +310,24 @@ Automatic_initialization_result try_extremity_hypotheses(const Initialization_sh
   const bool concurrent = Is_parallel<ConcurrencyTag>::value && assignments.size() > 1 && !s.verbose;
   std::vector<Initialization_pass_cache> caches;
   for(std::size_t h = 1; concurrent && h < assignments.size(); ++h) caches.push_back(cache.copy_without_rows());
-  parallel_for_in_order<ConcurrencyTag>(concurrent ? assignments.size() : 0, [&](std::size_t h) {
-    Initialization_settings hypothesis = s;
-    hypothesis.step_done = nullptr;
-    run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, hypothesis, e1, e2, assignments[h],
+  Initialization_settings quiet = s;
+  quiet.step_done = nullptr;
+  auto run = [&](std::size_t h) {
+    run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, concurrent ? quiet : s, e1, e2, assignments[h],
                                              h == 0 ? cache : caches[h - 1], runs[h].map_12, runs[h].map_21,
                                              runs[h].result);
-  });
+  };
   if(concurrent)
+  {
+    parallel_for_in_order<ConcurrencyTag>(assignments.size(), run);
     for(std::size_t h = 0; h < assignments.size(); ++h) s.notify_step();
+  }
+  else
+    for(std::size_t h = 0; h < assignments.size(); ++h) run(h);
   double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
   int passes = result.passes;
   for(std::size_t h = 0; h < assignments.size(); ++h)
   {
-    if(!concurrent)
-      run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, s, e1, e2, assignments[h], cache, runs[h].map_12,
-                                               runs[h].map_21, runs[h].result);
     std::vector<std::size_t>& r12 = runs[h].map_12;
     std::vector<std::size_t>& r21 = runs[h].map_21;
     Automatic_initialization_result& r = runs[h].result;
