@@ -1256,7 +1256,7 @@ BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
       params::matching_settings(settings_with({{"extremity_hypothesis_threshold", 0.0}, {"extremity_hypotheses", 1.0}})));
   BOOST_TEST(single.extremity_hypothesis == 1);
   BOOST_TEST(single.passes == 2);
-  BOOST_TEST(r.repair_passes == 0);
+  BOOST_TEST(single.repair_passes == 0);
   std::vector<std::size_t> f12, f21;
   const smc::Automatic_initialization_result first = smc::automatic_initial_maps(
       f.pair.m1, f.pair.m2, f12, f21,
@@ -1283,24 +1283,30 @@ BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
   BOOST_TEST(fraction_equal(c12, s12) == 1.0);
   BOOST_TEST(fraction_equal(c21, s21) == 1.0);
 #endif
-  // The tolerance against the descriptor maps: without it a hypothesis must distort the samples
-  // less; with a huge one the hypothesis always replaces them, however distorted.
-  for(const double tolerance : {0.0, 1e6})
-  {
-    smc::Matching_settings settings;
-    settings.set("extremity_hypothesis_threshold", 0.0);
-    settings.set("extremity_hypothesis_tolerance", tolerance);
+  // The tolerance against the descriptor maps, where they distort the samples less than the
+  // hypothesis (the near-isometric pair): with a huge tolerance the hypothesis replaces them,
+  // which measures its distortion d; then it replaces them just above the tolerance
+  // d / (distortion before) - 1, and not just below it.
+  const Pair_fixture& iso = asymmetric();
+  auto with_tolerance = [&](double tolerance) {
     std::vector<std::size_t> t12, t21;
-    const smc::Automatic_initialization_result t =
-        smc::automatic_initial_maps(f.pair.m1, f.pair.m2, t12, t21, params::matching_settings(settings));
+    const smc::Automatic_initialization_result t = smc::automatic_initial_maps(
+        iso.pair.m1, iso.pair.m2, t12, t21,
+        params::matching_settings(settings_with({{"extremity_hypothesis_threshold", 0.0},
+                                                 {"extremity_hypotheses", 1.0},
+                                                 {"extremity_hypothesis_tolerance", tolerance}})));
     BOOST_TEST_MESSAGE("tolerance " << tolerance << ": distortion " << t.sample_distortion_before << " -> "
                        << t.sample_distortion << ", hypothesis " << t.extremity_hypothesis);
-    BOOST_TEST(t.extremity_hypotheses == smc::internal::matching_defaults().extremity_hypotheses);
-    if(tolerance == 0)
-      BOOST_TEST(t.sample_distortion <= t.sample_distortion_before);
-    else
-      BOOST_TEST(t.extremity_hypothesis >= 1);
-  }
+    BOOST_TEST(t.extremity_hypotheses == 1);
+    return t;
+  };
+  const smc::Automatic_initialization_result always = with_tolerance(1e6);
+  BOOST_TEST_REQUIRE(always.extremity_hypothesis == 1);
+  BOOST_TEST_REQUIRE(always.sample_distortion > always.sample_distortion_before);
+  const double boundary = always.sample_distortion / always.sample_distortion_before - 1;
+  BOOST_TEST(with_tolerance(0.0).extremity_hypothesis == 0);
+  BOOST_TEST(with_tolerance(boundary * 0.99).extremity_hypothesis == 0);
+  BOOST_TEST(with_tolerance(boundary * 1.01).extremity_hypothesis == 1);
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_named)

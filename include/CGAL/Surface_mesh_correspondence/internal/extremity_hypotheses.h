@@ -28,6 +28,7 @@
 #include <iostream>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -248,21 +249,23 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 /// man's legs), hence the tolerance: on three pairs of the TOSCA_nonIso subset the hypothesis
 /// (scored by the proportions alone) distorted the samples 28-39% more than the wholly wrong
 /// descriptor maps, and its final maps had a third to three quarters of their error.
+///
+/// Returns whether the hypotheses ran (the distortion was above the threshold). `repaired` says
+/// whether the given maps come out of the tear repair, whose result then holds the torn fraction
+/// of the first maps; otherwise the given maps are the first maps, and their torn fraction is
+/// reported when a hypothesis replaces them.
 template <typename ConcurrencyTag>
-Automatic_initialization_result try_extremity_hypotheses(const Initialization_shape& shape1,
-                                                         const Initialization_shape& shape2,
-                                                         const Initialization_settings& s,
-                                                         std::vector<std::size_t>& map_12,
-                                                         std::vector<std::size_t>& map_21,
-                                                         Automatic_initialization_result result,
-                                                         Initialization_pass_cache& cache)
+bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                              const Initialization_settings& s, std::vector<std::size_t>& map_12,
+                              std::vector<std::size_t>& map_21, Automatic_initialization_result& result,
+                              Initialization_pass_cache& cache, bool repaired)
 {
-  if(s.extremity_hypotheses <= 0) return result;
+  if(s.extremity_hypotheses <= 0) return false;
   prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, cache);
   double distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21);
   result.sample_distortion = distortion;
   if(result.distortion_repair_passes == 0) result.sample_distortion_before = distortion;
-  if(distortion <= s.extremity_hypothesis_threshold) return result;
+  if(distortion <= s.extremity_hypothesis_threshold) return false;
   const auto start = std::chrono::steady_clock::now();
   Shape_extremities e1, e2;
   auto extremities = [&](const Initialization_shape& shape, const Initialization_sampling& sampling,
@@ -310,10 +313,14 @@ Automatic_initialization_result try_extremity_hypotheses(const Initialization_sh
   const bool concurrent = Is_parallel<ConcurrencyTag>::value && assignments.size() > 1 && !s.verbose;
   std::vector<Initialization_pass_cache> caches;
   for(std::size_t h = 1; concurrent && h < assignments.size(); ++h) caches.push_back(cache.copy_without_rows());
-  Initialization_settings quiet = s;
-  quiet.step_done = nullptr;
+  std::optional<Initialization_settings> quiet;
+  if(concurrent)
+  {
+    quiet = s;
+    quiet->step_done = nullptr;
+  }
   auto run = [&](std::size_t h) {
-    run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, concurrent ? quiet : s, e1, e2, assignments[h],
+    run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, quiet ? *quiet : s, e1, e2, assignments[h],
                                              h == 0 ? cache : caches[h - 1], runs[h].map_12, runs[h].map_21,
                                              runs[h].result);
   };
@@ -344,7 +351,10 @@ Automatic_initialization_result try_extremity_hypotheses(const Initialization_sh
                 << (keep ? " (kept)" : " (discarded)") << "\n";
     if(!keep) continue;
     r.spectra_seconds = result.spectra_seconds;
-    r.torn_fraction_before = result.torn_fraction_before;
+    // The torn fraction of the first maps (still in map_12 and map_21 until the first swap).
+    r.torn_fraction_before = repaired || result.extremity_hypothesis > 0
+                                 ? result.torn_fraction_before
+                                 : pair_tears(*shape1.mesh, *shape2.mesh, map_12, map_21, s.tear_threshold).torn_fraction();
     r.repair_passes += result.repair_passes;
     r.distortion_repair_passes = result.distortion_repair_passes;
     r.sample_distortion_before = result.sample_distortion_before;
@@ -362,7 +372,7 @@ Automatic_initialization_result try_extremity_hypotheses(const Initialization_sh
   result.zoomout_seconds = zoomout_seconds;
   result.passes = passes;
   result.extremity_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
+  return true;
 }
 
 /// The core of automatic_initial_maps() on precomputed shapes (see single_pass_initial_maps()):
@@ -389,22 +399,14 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
   Initialization_pass_cache& cache = pass_cache ? *pass_cache : own_cache;
   Automatic_initialization_result result =
       single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, &cache);
-  bool hypotheses_tried = false;
-  if(s.extremity_hypotheses > 0)
-  {
-    // They run only above the threshold; the torn fraction reported is that of the first maps.
-    const double torn = pair_tears(*shape1.mesh, *shape2.mesh, map_12, map_21, s.tear_threshold).torn_fraction();
-    result = try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache);
-    hypotheses_tried = result.sample_distortion > s.extremity_hypothesis_threshold;
-    if(result.extremity_hypothesis > 0) result.torn_fraction_before = torn;
-  }
+  const bool hypotheses_ran =
+      try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, false);
   if(result.extremity_hypothesis == 0)
   {
     result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
     if(s.distortion_repair_passes > 0)
       result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
-    if(s.extremity_hypotheses > 0 && !hypotheses_tried)
-      result = try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache);
+    if(!hypotheses_ran) try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, true);
   }
   if(grow) grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
