@@ -301,8 +301,9 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
   // From each hypothesis, a pass with all the fits of the first one, in the orientation of the
   // meshes, and its tear repair, whose landmarks from the core of its maps pin the body between
   // the extremities. With Parallel_tag the hypotheses run concurrently (the serial parts of one
-  // pass overlap the other's), each but the first on its own pass cache: the cached fast marching
-  // rows give the values of a new run, so the maps do not depend on it. Progress is then notified
+  // pass overlap the other's), each but the first on its own pass cache (one after the other they
+  // all use the given cache): the cached fast marching rows give the values of a new run, so the
+  // maps do not depend on it. Progress is then notified
   // on the calling thread once all are done (step_done may throw a stop request).
   struct Hypothesis_maps
   {
@@ -321,7 +322,7 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
   }
   auto run = [&](std::size_t h) {
     run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, quiet ? *quiet : s, e1, e2, assignments[h],
-                                             h == 0 ? cache : caches[h - 1], runs[h].map_12, runs[h].map_21,
+                                             h == 0 || !concurrent ? cache : caches[h - 1], runs[h].map_12, runs[h].map_21,
                                              runs[h].result);
   };
   if(concurrent)
