@@ -88,15 +88,18 @@ BOOST_AUTO_TEST_SUITE(spectrum)
 
 BOOST_AUTO_TEST_CASE(sphere_eigenvalues_converge_to_l_times_l_plus_1)
 {
+  // The vertices are jittered by 2% of the edge length: on the exact icosphere the eigenvalues
+  // have exact multiplicities 2l + 1, whose copies a Krylov solver finds only through rounding
+  // errors (it may miss one, depending on the compiler's rounding; see doc/spectral.md).
   double previous = 1;
   for(int level : {2, 3, 4})
   {
-    const smc::Laplace_beltrami_spectrum s(icosphere(level), params::number_of_eigenpairs(30));
+    const smc::Laplace_beltrami_spectrum s(jittered_sphere(level, 0.02), params::number_of_eigenpairs(30));
     BOOST_TEST(s.number_of_eigenpairs() == 30);
     BOOST_TEST(s.eigenvalues()[0] == 0);
     for(int j = 1; j < 30; ++j) BOOST_TEST(s.eigenvalues()[j] >= s.eigenvalues()[j - 1]);
     const double e = sphere_error(s, 4);  // l = 0..4: the first 25 eigenvalues
-    BOOST_TEST_MESSAGE("icosphere level " << level << ": max relative error (l <= 4) " << e);
+    BOOST_TEST_MESSAGE("jittered icosphere level " << level << ": max relative error (l <= 4) " << e);
     BOOST_TEST(e < (level == 2 ? 0.15 : level == 3 ? 0.04 : 0.01));
     BOOST_TEST(e < 0.3 * previous);  // O(h^2): about 4 times smaller per level
     previous = e;
@@ -175,7 +178,10 @@ BOOST_AUTO_TEST_CASE(dense_and_sparse_solvers_agree)
 BOOST_AUTO_TEST_CASE(two_components_of_different_size)
 {
   // A unit sphere and a sphere of radius 2: eigenvalues l(l+1) and l(l+1)/4 merged; zero twice.
-  const Mesh a = icosphere(3), b = icosphere(3, 2.0);
+  // Jittered (by 2% of the edge length): no exact multiplicities, whose copies the separate and
+  // the joint solves would find only through rounding errors.
+  const Mesh a = jittered_sphere(3, 0.02),
+             b = transformed(a, [](const Point& p) { return Point(2 * p.x(), 2 * p.y(), 2 * p.z()); });
   Mesh both = a;
   {
     Mesh shifted = transformed(b, [](const Point& p) { return Point(p.x() + 5, p.y(), p.z()); });
