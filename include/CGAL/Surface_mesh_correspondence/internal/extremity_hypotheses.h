@@ -303,8 +303,8 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
   // the extremities. With Parallel_tag the hypotheses run concurrently (the serial parts of one
   // pass overlap the other's), each but the first on its own pass cache (one after the other they
   // all use the given cache): the cached fast marching rows give the values of a new run, so the
-  // maps do not depend on it. Progress is then notified
-  // on the calling thread once all are done (step_done may throw a stop request).
+  // maps do not depend on it. Progress is then notified on the calling thread once all are done
+  // (step_done may throw a stop request).
   struct Hypothesis_maps
   {
     std::vector<std::size_t> map_12, map_21;
@@ -321,9 +321,9 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
     quiet->step_done = nullptr;
   }
   auto run = [&](std::size_t h) {
-    run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, quiet ? *quiet : s, e1, e2, assignments[h],
-                                             h == 0 || !concurrent ? cache : caches[h - 1], runs[h].map_12, runs[h].map_21,
-                                             runs[h].result);
+    Initialization_pass_cache& pass_cache = h == 0 || !concurrent ? cache : caches[h - 1];
+    run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, quiet ? *quiet : s, e1, e2, assignments[h], pass_cache,
+                                             runs[h].map_12, runs[h].map_21, runs[h].result);
   };
   if(concurrent)
   {
@@ -353,9 +353,10 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
     if(!keep) continue;
     r.spectra_seconds = result.spectra_seconds;
     // The torn fraction of the first maps (still in map_12 and map_21 until the first swap).
-    r.torn_fraction_before = repaired || result.extremity_hypothesis > 0
-                                 ? result.torn_fraction_before
-                                 : pair_tears(*shape1.mesh, *shape2.mesh, map_12, map_21, s.tear_threshold).torn_fraction();
+    r.torn_fraction_before =
+        repaired || result.extremity_hypothesis > 0
+            ? result.torn_fraction_before
+            : pair_tears(*shape1.mesh, *shape2.mesh, map_12, map_21, s.tear_threshold).torn_fraction();
     r.repair_passes += result.repair_passes;
     r.distortion_repair_passes = result.distortion_repair_passes;
     r.sample_distortion_before = result.sample_distortion_before;
@@ -407,7 +408,8 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
     result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
     if(s.distortion_repair_passes > 0)
       result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
-    if(!hypotheses_ran) try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, true);
+    if(!hypotheses_ran)
+      try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, true);
   }
   if(grow) grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
