@@ -336,6 +336,37 @@ BOOST_AUTO_TEST_CASE(sample_geodesics_match_great_circles)
   BOOST_TEST(worst < 0.025);  // 1.6% of the largest distance, pi / 2 (fast marching on 2562 vertices)
 }
 
+BOOST_AUTO_TEST_CASE(landmark_distance_fields_match_great_circles)
+{
+  // The ZoomOut features of the anchor landmarks on the sphere of radius 1 (area 4 pi): weight
+  // times the great-circle distance to each landmark over the square root of the area.
+  namespace smci = smc::internal;
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(icosphere(4));
+  const smci::Fast_marching_geometry g(m);
+  const std::vector<int> sources = {0, 700, 2000};
+  const double scale = std::sqrt(m.total_area), weight = 3.0;
+  const Eigen::MatrixXd F = smci::landmark_distance_fields<CGAL::Sequential_tag>(g, sources, scale, weight);
+  BOOST_TEST_REQUIRE(F.rows() == Eigen::Index(m.number_of_vertices()));
+  BOOST_TEST_REQUIRE(F.cols() == 3);
+  double worst = 0;
+  for(std::size_t l = 0; l < sources.size(); ++l)
+  {
+    BOOST_TEST(F(sources[l], Eigen::Index(l)) == 0.0);
+    const Eigen::Vector3d p = m.point(sources[l]).normalized();
+    for(int v = 0; v < m.number_of_vertices(); ++v)
+    {
+      const double exact = weight * std::acos(std::max(-1.0, std::min(1.0, p.dot(m.point(v).normalized())))) / scale;
+      worst = std::max(worst, std::abs(F(v, Eigen::Index(l)) - exact));
+    }
+  }
+  BOOST_TEST_MESSAGE("largest error of the landmark distance fields on the sphere: " << worst);
+  BOOST_TEST(worst < weight * 0.05 / scale);  // 1.6% of pi (fast marching on 2562 vertices)
+#ifdef CGAL_LINKED_WITH_TBB
+  const Eigen::MatrixXd parallel = smci::landmark_distance_fields<CGAL::Parallel_tag>(g, sources, scale, weight);
+  BOOST_TEST((parallel - F).cwiseAbs().maxCoeff() == 0.0);
+#endif
+}
+
 BOOST_AUTO_TEST_CASE(row_cache_gives_the_distances_of_new_runs)
 {
   // The distortion scores of later passes look up fast-marching rows of earlier ones. Sequences of
@@ -1309,6 +1340,70 @@ BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
   BOOST_TEST(with_tolerance(boundary * 1.01).extremity_hypothesis == 1);
 }
 
+BOOST_AUTO_TEST_CASE(landmark_distances_keep_the_limbs_of_another_species)
+{
+  // A creature and another species, with the true extremities as user landmarks and no
+  // hypotheses: the distance fields of the landmarks as ZoomOut features
+  // (landmark_distance_weight) keep every vertex about as far from each landmark as its image,
+  // which the descriptor fits and the pinned landmark rows alone do less well.
+  namespace smci = smc::internal;
+  // Arms longer than the legs, a big head and almost no tail.
+  const std::vector<Limb> other = creature_limbs(0.5, 0.45, 1.1, 1.0, 0.6, 0.1);
+  const Pair_fixture f(creature(3, false), [other](const Point& p) { return on_creature(other, p); });
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
+  const smci::Fast_marching_geometry g1(m1), g2(m2);
+  const smci::Shape_extremities e = smci::shape_extremities(m1, g1, smci::farthest_samples(m1, 32), 0.15, 8);
+  BOOST_TEST_REQUIRE(e.vertices.size() == 6u);
+  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
+  std::vector<int> sources1, sources2;
+  for(int v : e.vertices)
+  {
+    landmarks.emplace_back(std::size_t(v), f.pair.gt_12[std::size_t(v)]);
+    sources1.push_back(v);
+    sources2.push_back(int(f.pair.gt_12[std::size_t(v)]));
+  }
+  // The mean difference of the landmark distances of the vertices of mesh 1 and of their images.
+  const Eigen::MatrixXd D1 =
+      smci::landmark_distance_fields<CGAL::Sequential_tag>(g1, sources1, std::sqrt(m1.total_area), 1.0);
+  const Eigen::MatrixXd D2 =
+      smci::landmark_distance_fields<CGAL::Sequential_tag>(g2, sources2, std::sqrt(m2.total_area), 1.0);
+  auto distance_change = [&](const std::vector<std::size_t>& m12) {
+    double sum = 0;
+    for(std::size_t v = 0; v < m12.size(); ++v)
+      sum += (D1.row(Eigen::Index(v)) - D2.row(Eigen::Index(m12[v]))).cwiseAbs().mean();
+    return sum / double(m12.size());
+  };
+  auto run = [&](double weight, std::vector<std::size_t>& m12, std::vector<std::size_t>& m21) {
+    smc::Matching_settings settings;
+    settings.set("extremity_hypotheses", 0.0);
+    settings.set("landmark_distance_weight", weight);
+    smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
+                                params::landmarks(landmarks, params::matching_settings(settings)));
+  };
+  std::vector<std::size_t> a12, a21, d12, d21;
+  run(0.0, a12, a21);
+  run(smci::matching_defaults().landmark_distance_weight, d12, d21);
+  const double without = f.error_12(a12, f.pair.gt_12), with = f.error_12(d12, f.pair.gt_12);
+  const double without_21 = f.error_21(a21, f.pair.gt_21), with_21 = f.error_21(d21, f.pair.gt_21);
+  BOOST_TEST_MESSAGE("another species from its extremities: errors " << without << " " << without_21
+                     << " without the landmark distances, " << with << " " << with_21 << " with them; change of "
+                     << "the landmark distances " << distance_change(a12) << " -> " << distance_change(d12));
+  // Measured: errors 0.059 and 0.057 without, 0.047 and 0.043 with them; the landmark distances
+  // changed by 0.052 without, 0.047 with them.
+  BOOST_TEST(distance_change(d12) < 0.95 * distance_change(a12));
+  BOOST_TEST(with < 0.9 * without);
+  BOOST_TEST(with_21 < 0.9 * without_21);
+  // Without landmarks there is no anchor and no feature: the same maps with the weight at 0.
+  std::vector<std::size_t> n12, n21, z12, z21;
+  smc::Matching_settings off;
+  off.set("extremity_hypotheses", 0.0);
+  smc::automatic_initial_maps(f.pair.m1, f.pair.m2, n12, n21, params::matching_settings(off));
+  off.set("landmark_distance_weight", 0.0);
+  smc::automatic_initial_maps(f.pair.m1, f.pair.m2, z12, z21, params::matching_settings(off));
+  BOOST_TEST(fraction_equal(n12, z12) == 1.0);
+  BOOST_TEST(fraction_equal(n21, z21) == 1.0);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_is_named)
 {
   const Pair_fixture& f = asymmetric();
@@ -1335,6 +1430,8 @@ BOOST_AUTO_TEST_CASE(bad_input_is_named)
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_threshold(-1.0)),
                     smc::Invalid_parameter_error);
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_tolerance(-0.5)),
+                    smc::Invalid_parameter_error);
+  BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::landmark_distance_weight(-1.0)),
                     smc::Invalid_parameter_error);
   // Landmarks out of range.
   const std::vector<std::pair<std::size_t, std::size_t> > bad = {{0, num_vertices(f.pair.m2)}};

@@ -170,6 +170,11 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     100, 7, 16).
 ///   - `landmarks`: known correspondences, a range of pairs (vertex index in `tm1`, vertex index in
 ///     `tm2`) (e.g. `std::vector<std::pair<std::size_t, std::size_t>>`); default none.
+///   - `landmark_distance_weight`: weight of the geodesic distance fields of the landmarks
+///     (divided by the square root of the mesh area) appended to the ZoomOut embeddings of every
+///     pass, so that each vertex is matched to one about as far from every landmark; type
+///     `double`; default 10 (0: none). The landmarks of the repair passes and of the extremity
+///     hypotheses get no distance field.
 ///   - `number_of_repair_passes`: tear repair passes at most; type `int`; default 2 (0: no
 ///     repair).
 ///   - `tear_threshold`: a source edge is torn when its images are at least this far apart,

@@ -68,10 +68,11 @@ inline double zoomout_feature_scale(const Zoomout_settings& settings, std::size_
   return (1.0 - t) + t * settings.feature_final_ratio;
 }
 
-/// [left, scale * features] (features may be empty).
+/// [left, scale * features] (either may be empty).
 inline Eigen::MatrixXd append_features(Eigen::MatrixXd left, const Eigen::MatrixXd* features, double scale)
 {
   if(!features || features->cols() == 0 || scale == 0) return left;
+  if(left.cols() == 0) return scale * (*features);
   const Eigen::Index c = left.cols();
   left.conservativeResize(Eigen::NoChange, c + features->cols());
   left.rightCols(features->cols()) = scale * (*features);

@@ -139,6 +139,9 @@ struct Initialization_pass_data
   const Initialization_pass_cache* cache = nullptr;
   Eigen::VectorXd feature_weights;
   Eigen::MatrixXd features1, features2;  ///< ZoomOut features (zoomout_descriptor_weight > 0)
+  /// ZoomOut features: the weighted distance fields of the anchor landmarks (see
+  /// prepare_landmark_distances()).
+  Eigen::MatrixXd distances1, distances2;
   Zoomout_settings select_settings;      ///< the short ZoomOut to the selection size
 };
 
@@ -294,6 +297,57 @@ inline void prepare_pass_features(const Initialization_settings& s, Initializati
     p.features2 = zoomout_feature_columns(p.D2, p.feature_weights);
   }
   p.select_settings = initialization_zoomout_settings(s, s.zoomout_step, selection_basis_size(s));
+}
+
+/// The geodesic distance fields of `sources` on the mesh of `g` (fast marching), times
+/// `weight / scale`: column l is the field of sources[l].
+template <typename ConcurrencyTag>
+Eigen::MatrixXd landmark_distance_fields(const Fast_marching_geometry& g, const std::vector<int>& sources,
+                                         double scale, double weight)
+{
+  const int n = g.number_of_vertices();
+  Eigen::MatrixXd F(n, Eigen::Index(sources.size()));
+  parallel_for_ranges<ConcurrencyTag>(sources.size(), [&](std::size_t begin, std::size_t end) {
+    Fast_marching_workspace w(g);
+    for(std::size_t l = begin; l < end; ++l)
+    {
+      w.run(sources[l]);
+      for(int v = 0; v < n; ++v) F(v, Eigen::Index(l)) = weight * w.distance(v) / scale;
+    }
+  });
+  return F;
+}
+
+/// The ZoomOut features of the anchor landmarks (the first `anchor_landmarks` landmarks, with
+/// `landmark_distance_weight` > 0): their geodesic distance fields on both meshes, divided by the
+/// square root of the mesh area and weighted. A vertex and its image are then near in the
+/// embeddings only when they are about as far from each landmark. The descriptor fits and the
+/// pinned landmark rows do not ensure that on pairs far from isometric: from the true extremities
+/// of the TOSCA_nonIso pairs, whole limbs were still mirrored.
+template <typename ConcurrencyTag>
+void prepare_landmark_distances(const Initialization_shape& shape1, const Initialization_shape& shape2,
+                                const Initialization_settings& s, Initialization_pass_data& p)
+{
+  const std::size_t anchors = std::min(s.anchor_landmarks, p.landmarks.size());
+  if(anchors == 0 || s.landmark_distance_weight <= 0) return;
+  std::vector<int> sources1, sources2;
+  for(std::size_t l = 0; l < anchors; ++l)
+  {
+    sources1.push_back(p.landmarks[l].first);
+    sources2.push_back(p.landmarks[l].second);
+  }
+  // The fast marching geometry of the distortion samples when there is one.
+  auto fields = [&](const Initialization_shape& shape, const Initialization_sampling& sampling,
+                    const std::vector<int>& sources, Eigen::MatrixXd& out) {
+    const double scale = std::sqrt(shape.spectrum->total_area());
+    if(sampling.geodesics.mesh == shape.mesh)
+      out = landmark_distance_fields<ConcurrencyTag>(sampling.geodesics, sources, scale, s.landmark_distance_weight);
+    else
+      out = landmark_distance_fields<ConcurrencyTag>(Fast_marching_geometry(*shape.mesh), sources, scale,
+                                                     s.landmark_distance_weight);
+  };
+  invoke_both<ConcurrencyTag>([&] { fields(shape1, p.cache->first, sources1, p.distances1); },
+                              [&] { fields(shape2, p.cache->second, sources2, p.distances2); });
 }
 
 /// The candidates: every configuration (and, with landmarks, both orientations unless
@@ -520,6 +574,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   prepare_pass_cache<ConcurrencyTag>(shape1, shape2, s, cache);
   p.cache = &cache;
   prepare_pass_features(s, p);
+  prepare_landmark_distances<ConcurrencyTag>(shape1, shape2, s, p);
 
   // Candidates: fits of both directions for every configuration (and, with landmarks, for both
   // orientations), each refined by a short ZoomOut to the selection size and scored by the
@@ -558,11 +613,14 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   // size once the pass is chosen).
   const Clock::time_point zoom_start = Clock::now();
   const Zoomout_settings zs = initialization_zoomout_settings(s, s.zoomout_step, pass_final_size(s));
+  // The descriptor features and the landmark distances.
+  const Eigen::MatrixXd F1 = append_features(p.features1, &p.distances1, 1.0);
+  const Eigen::MatrixXd F2 = append_features(p.features2, &p.distances2, 1.0);
   Zoomout_features features12, features21;
-  if(s.zoomout_descriptor_weight > 0)
+  if(F1.cols() > 0)
   {
-    features12.source = features21.target = &p.features1;
-    features12.target = features21.source = &p.features2;
+    features12.source = features21.target = &F1;
+    features12.target = features21.source = &F2;
   }
   std::vector<int> t12, t21;
   zoomout_pair<ConcurrencyTag>(p.basis1, p.mass1, p.basis2, p.mass2, s, zs, cache.first.samples.rows,

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -94,6 +95,14 @@ struct Initialization_settings
   /// With landmarks, the orientations fitted: 0 both (the landmarks choose), +1 or -1 only that
   /// hypothesis (relative to the meshes' own orientations).
   int landmark_orientation = 0;
+  /// Weight of the geodesic distance fields of the anchor landmarks (divided by the square root of
+  /// the mesh area) appended to the ZoomOut embeddings of a pass (0: none).
+  double landmark_distance_weight = matching_defaults().landmark_distance_weight;
+  /// The anchor landmarks, whose distance fields are ZoomOut features: the first
+  /// min(anchor_landmarks, landmarks.size()) landmarks. All given landmarks by default; a repair
+  /// pass, which adds landmarks from the core of the maps, keeps the anchors of the maps it
+  /// repairs and no more.
+  std::size_t anchor_landmarks = std::numeric_limits<std::size_t>::max();
   // Tear repair.
   /// Repair passes at most: after each set of maps whose tears cut off more than
   /// tear_min_fraction of a mesh, the maps are recomputed with landmarks sampled in the core (the
@@ -211,6 +220,7 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.tear_min_fraction = m.tear_area_fraction;
   s.tear_repair_distortion_tolerance = m.tear_repair_distortion_tolerance;
   s.tear_repair_landmarks = m.number_of_tear_repair_landmarks;
+  s.landmark_distance_weight = m.landmark_distance_weight;
   s.automatic_maps_comparison_threshold = m.automatic_maps_comparison_threshold;
   s.automatic_maps_maximum_distortion = m.automatic_maps_maximum_distortion;
   return s;
@@ -321,6 +331,9 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(!(s.tear_min_fraction >= 0) || !(s.tear_min_fraction < 1)) fail("tear_min_fraction must be in [0, 1)");
   if(!std::isfinite(s.tear_repair_distortion_tolerance)) fail("tear_repair_distortion_tolerance must be finite");
   if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
+  if(!(s.landmark_distance_weight >= 0) || !std::isfinite(s.landmark_distance_weight))
+    fail("landmark_distance_weight = " + std::to_string(s.landmark_distance_weight) +
+         " must be non-negative and finite");
 }
 
 /// The number of eigenpairs the initialisation needs.

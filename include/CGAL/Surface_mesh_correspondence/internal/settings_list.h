@@ -113,6 +113,9 @@
     "maps they replace (negative: no check)")                                                                      \
   X(number_of_tear_repair_landmarks, int, 30, 30, range_between(1, 100000), initialization,                        \
     "landmarks sampled in the core of each map by a repair pass")                                                  \
+  X(landmark_distance_weight, double, 10.0, 10.0, range_at_least(0), initialization,                              \
+    "passes with the user's landmarks: weight of the geodesic distances to the landmarks (divided by the square "  \
+    "root of the area) appended to the ZoomOut embeddings (0: none)")                                             \
   /* ------------------------------------------------ given maps */                                                \
   X(repair_given_maps, bool, true, true, range_any(), repair,                                                      \
     "given maps: repair their tears (swapped limbs) with landmarks from their core before the refinement")         \

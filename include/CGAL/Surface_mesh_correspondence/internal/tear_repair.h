@@ -78,6 +78,7 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
     Initialization_settings repair = s;
     repair.landmark_orientation = result.orientation_sign * mesh_sign;
     if(!s.repair_candidates.empty()) repair.candidates = s.repair_candidates;
+    repair.anchor_landmarks = std::min(s.anchor_landmarks, s.landmarks.size());
     for(const auto& p : core_correspondences(m1, tears.forth, map_12, s.tear_repair_landmarks))
       repair.landmarks.emplace_back(std::size_t(p.first), std::size_t(p.second));
     for(const auto& p : core_correspondences(m2, tears.back, map_21, s.tear_repair_landmarks))
@@ -156,6 +157,7 @@ Automatic_initialization_result repair_distorted_maps(const Initialization_shape
     ++passes;
     Initialization_settings repair = s;
     repair.landmark_orientation = result.orientation_sign * mesh_sign;  // all the fits of the first pass
+    repair.anchor_landmarks = std::min(s.anchor_landmarks, s.landmarks.size());
     // The landmarks come from the larger core only: the cores of the two maps of a half-flipped
     // pair can keep opposite halves.
     const std::size_t l = std::size_t(s.tear_repair_landmarks);
