@@ -6,12 +6,14 @@
 // initial maps): outputs present and consistent, refined maps re-evaluated with the library give
 // the figures of the CSV.
 
+#include <CGAL/Surface_mesh/IO/OFF.h>
 #include <CGAL/Surface_mesh_correspondence/evaluation.h>
 
 #include "test_cli_helpers.h"
 
 #include <boost/test/unit_test.hpp>
 
+#include <fstream>
 #include <map>
 
 namespace smc = CGAL::Surface_mesh_correspondence;
@@ -153,6 +155,58 @@ BOOST_AUTO_TEST_CASE(bench_on_a_two_pair_dataset)
     BOOST_TEST(text.rfind("<?xml", 0) == 0u, svg);
     BOOST_TEST(text.find("<polyline") != std::string::npos, svg);
   }
+}
+
+BOOST_AUTO_TEST_CASE(bench_from_ground_truth_landmarks)
+{
+  const Dataset& d = dataset();
+  const std::string out = in_scratch("bench_landmarks");
+  const Run r = comap("bench --data " + d.dir + " --out " + out + " --limit 1 --ground-truth-landmarks 3" +
+                      fast_options());
+  BOOST_TEST_REQUIRE(r.code == 0, r.err);
+  BOOST_TEST(read_text(out + "/summary.json").find("\"ground_truth_landmarks\": 3") != std::string::npos);
+  // The landmarks, by brute force: the first sample of s0, then each time the sample farthest from
+  // those chosen, with the ground truth of s1 (on the points of the file, as bench reads them).
+  Mesh s0;
+  {
+    std::ifstream in(d.dir + "/off/s0.off");
+    BOOST_TEST_REQUIRE(CGAL::IO::read_OFF(in, s0));
+  }
+  BOOST_TEST_REQUIRE(num_vertices(s0) == num_vertices(d.s0));
+  auto sample = [&](std::size_t k) { return s0.point(Vertex(static_cast<Mesh::size_type>(d.vts0[k]))); };
+  std::vector<std::size_t> chosen = {0};
+  while(chosen.size() < 3)
+  {
+    std::size_t best = 0;
+    double best_distance = -1;
+    for(std::size_t k = 0; k < d.vts0.size(); ++k)
+    {
+      double nearest = 1e300;
+      for(std::size_t c : chosen) nearest = std::min(nearest, std::sqrt(CGAL::squared_distance(sample(k), sample(c))));
+      if(nearest > best_distance)
+      {
+        best_distance = nearest;
+        best = k;
+      }
+    }
+    chosen.push_back(best);
+  }
+  std::string landmarks;
+  for(std::size_t k : chosen) landmarks += std::to_string(d.vts0[k] + 1) + " " + std::to_string(d.vts1[k] + 1) + "\n";
+  const std::string landmark_file = in_scratch("bench_landmarks.txt");
+  write_text(landmark_file, landmarks);
+  // comap match from those landmarks gives the maps of the bench.
+  const std::string m12 = in_scratch("bench_landmarks_12.map"), m21 = in_scratch("bench_landmarks_21.map");
+  const Run m = comap("match " + d.dir + "/off/s0.off " + d.dir + "/off/s1.off --landmarks " + landmark_file +
+                      " --out-12 " + m12 + " --out-21 " + m21 + fast_options());
+  BOOST_TEST_REQUIRE(m.code == 0, m.err);
+  BOOST_TEST(read_map(m12, 1) == read_map(out + "/maps/s0_s1.map", 1));
+  BOOST_TEST(read_map(m21, 1) == read_map(out + "/maps/s1_s0.map", 1));
+  // The landmarks guide the automatic initial maps: not with given maps.
+  const Run both = comap("bench --data " + d.dir + " --init " + d.dir + "/maps/noisy --out " +
+                         in_scratch("bench_landmarks_init") + " --ground-truth-landmarks 3");
+  BOOST_TEST(both.code == 2);
+  BOOST_TEST(both.err.find("--ground-truth-landmarks") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(bench_automatic_pipeline_and_comparison_plot)

@@ -40,7 +40,7 @@ namespace {
 struct Bench_options
 {
   std::string data, pairs, init, out, compare, label;
-  int jobs = 1, limit = 0, cache = 0;
+  int jobs = 1, limit = 0, cache = 0, ground_truth_landmarks = 0;
   bool verbose = false;
 };
 
@@ -54,6 +54,31 @@ struct Bench_shape
   double preparation_seconds = 0;
   std::size_t number_of_vertices() const { return mesh.number_of_vertices(); }
 };
+
+/// `count` landmarks from the ground truth of a pair: the ground-truth samples of `a` spread by
+/// farthest-point sampling (Euclidean, from the first sample), each with its ground-truth match in
+/// `b`, as (vertex of a, vertex of b).
+std::vector<std::pair<std::size_t, std::size_t> > ground_truth_landmarks(const Bench_shape& a, const Bench_shape& b,
+                                                                         int count)
+{
+  std::vector<std::pair<std::size_t, std::size_t> > out;
+  const std::size_t n = std::min(a.vts.size(), b.vts.size());
+  if(count <= 0 || n == 0) return out;
+  const auto& points = a.mesh.points();
+  auto distance = [&](std::size_t i, std::size_t j) {
+    const auto& p = points[a.vts[i]];
+    const auto& q = points[a.vts[j]];
+    return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+  };
+  std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
+  for(std::size_t next = 0; out.size() < std::min(n, std::size_t(count));)
+  {
+    out.emplace_back(a.vts[next], b.vts[next]);
+    for(std::size_t i = 0; i < n; ++i) nearest[i] = std::min(nearest[i], distance(i, next));
+    next = std::size_t(std::max_element(nearest.begin(), nearest.end()) - nearest.begin());
+  }
+  return out;
+}
 
 /// Prepared shapes shared by the jobs, at most `capacity` of them kept once unused (least
 /// recently used first out). A shape asked for while another job prepares it is waited for.
@@ -430,6 +455,12 @@ int run_bench(int argc, char** argv)
   p.value("--init", "DIR", "initial maps A_B.map and B_A.map, 1-based (default: automatic initialisation)", "",
           [&](const std::string& v) { o.init = v; });
   p.value("--out", "DIR", "output directory (created)", "", [&](const std::string& v) { o.out = v; });
+  p.value("--ground-truth-landmarks", "K",
+          "automatic initial maps from K landmarks: ground-truth samples of the first shape of each pair spread "
+          "by farthest-point sampling, with their ground-truth matches (0: none)",
+          "0", [&](const std::string& v) {
+            o.ground_truth_landmarks = parse_int("--ground-truth-landmarks", v, 0, 100000);
+          });
   p.value("--jobs", "N", "pairs run at once (each on threads / N threads)", "1",
           [&](const std::string& v) { o.jobs = parse_int("--jobs", v, 1, 256); });
   p.value("--limit", "N", "only the first N pairs (0: all)", "0",
@@ -455,6 +486,8 @@ int run_bench(int argc, char** argv)
   if(o.pairs.empty()) o.pairs = o.data + "/test_pairs.txt";
   if(!directory_exists(o.data)) throw Input_error("--data: " + o.data + " is not a directory");
   if(!automatic && !directory_exists(o.init)) throw Input_error("--init: " + o.init + " is not a directory");
+  if(!automatic && o.ground_truth_landmarks > 0)
+    throw Usage_error("--ground-truth-landmarks guide the automatic initial maps: give them or --init, not both");
   // Nothing bench writes under --out may be one of its inputs.
   std::vector<Named_file> inputs = {{"--data", o.data}, {"--pairs", o.pairs}, {"--init", o.init}, {"--compare", o.compare}};
   for(const std::string& f : settings_files) inputs.push_back({"--settings", f});
@@ -495,7 +528,11 @@ int run_bench(int argc, char** argv)
   const Progress quiet_progress(true);
   const Progress& step_progress = o.verbose ? progress : quiet_progress;
   progress.line("bench: " + std::to_string(pairs.size()) + " pairs of " + o.data +
-                (automatic ? ", automatic initial maps" : ", initial maps from " + o.init) + ", " + o.label +
+                (automatic ? ", automatic initial maps" : ", initial maps from " + o.init) +
+                (o.ground_truth_landmarks > 0
+                     ? " from " + std::to_string(o.ground_truth_landmarks) + " ground-truth landmarks"
+                     : std::string()) +
+                ", " + o.label +
                 " refinement, " + std::to_string(jobs) + " job(s) x " + std::to_string(threads_per_job) + " thread(s)");
 
   Shape_cache cache(o.cache > 0 ? static_cast<std::size_t>(o.cache) : static_cast<std::size_t>(2 * jobs + 2),
@@ -527,7 +564,9 @@ int run_bench(int argc, char** argv)
         throw Input_error(vts_file(r.a) + " and " + vts_file(r.b) + " have different numbers of samples");
       r.preprocessing_seconds = A->preparation_seconds + B->preparation_seconds;
       Progress_visitor visitor(step_progress, r.a + " - " + r.b + ": ");
-      const auto np = smc::parameters::matching_settings(settings, smc::parameters::visitor(std::ref(visitor)));
+      const auto np = smc::parameters::matching_settings(
+          settings, smc::parameters::landmarks(ground_truth_landmarks(*A, *B, o.ground_truth_landmarks),
+                                               smc::parameters::visitor(std::ref(visitor))));
       Vertex_map m12, m21, g12, g21;
       smc::Matching_result m;
       if(automatic)
@@ -784,6 +823,7 @@ int run_bench(int argc, char** argv)
         .value("data", o.data)
         .value("pairs_file", o.pairs)
         .value("initial_maps", automatic ? std::string("automatic") : o.init)
+        .value("ground_truth_landmarks", o.ground_truth_landmarks)
         .value("pairs", succeeded)
         .value("maps", 2 * succeeded)
         .value("failed_pairs", failed);
