@@ -262,6 +262,17 @@ struct Initialization_sampling
   Eigen::MatrixXd sample_distances;
   /// Runs of the distortion scores, shared by all passes (see Fast_marching_row_cache).
   mutable Fast_marching_row_cache rows;
+
+  /// A copy without the cached rows (up to 48 MB per mesh), for a pass that runs concurrently
+  /// with others: the caches are not shared between threads.
+  Initialization_sampling copy_without_rows() const
+  {
+    Initialization_sampling c;
+    c.samples = samples;
+    c.geodesics = geodesics;
+    c.sample_distances = sample_distances;
+    return c;
+  }
 };
 
 /// The samplings of both meshes, computed by the first pass and reused by the repair passes
@@ -280,12 +291,8 @@ struct Initialization_pass_cache
     c.ready = ready;
     c.number_of_samples = number_of_samples;
     c.distortion_count = distortion_count;
-    for(auto from_to : {std::make_pair(&first, &c.first), std::make_pair(&second, &c.second)})
-    {
-      from_to.second->samples = from_to.first->samples;
-      from_to.second->geodesics = from_to.first->geodesics;
-      from_to.second->sample_distances = from_to.first->sample_distances;
-    }
+    c.first = first.copy_without_rows();
+    c.second = second.copy_without_rows();
     return c;
   }
 };
