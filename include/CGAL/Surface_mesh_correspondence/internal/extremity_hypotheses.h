@@ -230,10 +230,9 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
   hypothesis.landmark_orientation = 1;
   // The extremities are not anchors: their distance fields would make a mirror twin's maps as
   // consistent as the true hypothesis's, which the sample distortion could then not tell apart.
-  hypothesis.anchor_landmarks = std::min(s.anchor_landmarks, s.landmarks.size());
   for(const auto& p : assignment.pairs)
-    hypothesis.landmarks.emplace_back(std::size_t(e1.vertices[std::size_t(p.first)]),
-                                      std::size_t(e2.vertices[std::size_t(p.second)]));
+    hypothesis.add_landmark(std::size_t(e1.vertices[std::size_t(p.first)]),
+                            std::size_t(e2.vertices[std::size_t(p.second)]));
   result = single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, hypothesis, map_12, map_21, &cache);
   result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, hypothesis, map_12, map_21, result, &cache);
 }

@@ -99,10 +99,16 @@ struct Initialization_settings
   /// the mesh area) appended to the ZoomOut embeddings of a pass (0: none).
   double landmark_distance_weight = matching_defaults().landmark_distance_weight;
   /// The anchor landmarks, whose distance fields are ZoomOut features: the first
-  /// min(anchor_landmarks, landmarks.size()) landmarks. All given landmarks by default; a repair
-  /// pass, which adds landmarks from the core of the maps, keeps the anchors of the maps it
-  /// repairs and no more.
+  /// min(anchor_landmarks, landmarks.size()) landmarks. All given landmarks by default; those
+  /// added by add_landmark() are not anchors.
   std::size_t anchor_landmarks = std::numeric_limits<std::size_t>::max();
+  /// Adds a landmark that is not an anchor (one of the core of a repaired map, or an extremity of
+  /// a hypothesis): the anchors stay those already given.
+  void add_landmark(std::size_t vertex_1, std::size_t vertex_2)
+  {
+    anchor_landmarks = std::min(anchor_landmarks, landmarks.size());
+    landmarks.emplace_back(vertex_1, vertex_2);
+  }
   // Tear repair.
   /// Repair passes at most: after each set of maps whose tears cut off more than
   /// tear_min_fraction of a mesh, the maps are recomputed with landmarks sampled in the core (the

@@ -78,11 +78,10 @@ Automatic_initialization_result repair_torn_maps(const Initialization_shape& sha
     Initialization_settings repair = s;
     repair.landmark_orientation = result.orientation_sign * mesh_sign;
     if(!s.repair_candidates.empty()) repair.candidates = s.repair_candidates;
-    repair.anchor_landmarks = std::min(s.anchor_landmarks, s.landmarks.size());
     for(const auto& p : core_correspondences(m1, tears.forth, map_12, s.tear_repair_landmarks))
-      repair.landmarks.emplace_back(std::size_t(p.first), std::size_t(p.second));
+      repair.add_landmark(std::size_t(p.first), std::size_t(p.second));
     for(const auto& p : core_correspondences(m2, tears.back, map_21, s.tear_repair_landmarks))
-      repair.landmarks.emplace_back(std::size_t(p.second), std::size_t(p.first));
+      repair.add_landmark(std::size_t(p.second), std::size_t(p.first));
     std::vector<std::size_t> r12, r21;
     Automatic_initialization_result r = single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, repair, r12, r21, pass_cache);
     const Pair_tears repaired = pair_tears(m1, m2, r12, r21, s.tear_threshold);
@@ -157,7 +156,6 @@ Automatic_initialization_result repair_distorted_maps(const Initialization_shape
     ++passes;
     Initialization_settings repair = s;
     repair.landmark_orientation = result.orientation_sign * mesh_sign;  // all the fits of the first pass
-    repair.anchor_landmarks = std::min(s.anchor_landmarks, s.landmarks.size());
     // The landmarks come from the larger core only: the cores of the two maps of a half-flipped
     // pair can keep opposite halves.
     const std::size_t l = std::size_t(s.tear_repair_landmarks);
@@ -168,12 +166,12 @@ Automatic_initialization_result repair_distorted_maps(const Initialization_shape
       if(forth)
       {
         const int v = samples1[std::size_t(core[i])];
-        repair.landmarks.emplace_back(std::size_t(v), map_12[std::size_t(v)]);
+        repair.add_landmark(std::size_t(v), map_12[std::size_t(v)]);
       }
       else
       {
         const int w = samples2[std::size_t(core[i])];
-        repair.landmarks.emplace_back(map_21[std::size_t(w)], std::size_t(w));
+        repair.add_landmark(map_21[std::size_t(w)], std::size_t(w));
       }
     }
     std::vector<std::size_t> r12, r21;
