@@ -1233,6 +1233,58 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_keep_the_proportions)
   BOOST_TEST(smci::extremity_assignments(part.topLeftCorner(2, 2), all, 4).empty());
 }
 
+BOOST_AUTO_TEST_CASE(shot_disagreement_tells_front_from_back)
+{
+  // The creature and its posed copy: the true map against the map turned front to back (rotated
+  // by pi about the vertical axis, nearest vertices by brute force), orientation-preserving like
+  // the mirror twin of an extremity hypothesis. The creature's limbs lean to the front and its
+  // tail is at the back.
+  namespace smci = smc::internal;
+  const Pair_fixture& f = asymmetric();
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
+  std::vector<std::size_t> turned(std::size_t(m1.number_of_vertices()));
+  for(int v = 0; v < m1.number_of_vertices(); ++v)
+  {
+    const Eigen::Vector3d p = m1.point(v), q(-p.x(), p.y(), -p.z());
+    int best = 0;
+    for(int u = 1; u < m2.number_of_vertices(); ++u)
+      if((m2.point(u) - q).squaredNorm() < (m2.point(best) - q).squaredNorm()) best = u;
+    turned[std::size_t(v)] = std::size_t(best);
+  }
+  smci::Shot_options shot;
+  const smci::Shot_samples all1 = smci::shot_samples<CGAL::Sequential_tag>(m1, {}, shot);
+  BOOST_TEST_REQUIRE(all1.vertices.size() == std::size_t(m1.number_of_vertices()));
+  // The identity of a mesh agrees exactly.
+  BOOST_TEST(smci::shot_disagreement<CGAL::Sequential_tag>(all1, m1, all_vertices(m1.number_of_vertices()), shot) ==
+             0.0);
+  const double truth = smci::shot_disagreement<CGAL::Sequential_tag>(all1, m2, f.pair.gt_12, shot);
+  const double front_to_back = smci::shot_disagreement<CGAL::Sequential_tag>(all1, m2, turned, shot);
+  BOOST_TEST_MESSAGE("SHOT disagreement: true map " << truth << ", turned front to back " << front_to_back);
+  BOOST_TEST(truth < 0.9 * front_to_back);
+  // On some vertices, the mean over those vertices: the rows of the matrix of all vertices.
+  const std::vector<int> some = {0, 7, 100, 321, 641};
+  const smci::Shot_samples part = smci::shot_samples<CGAL::Sequential_tag>(m1, some, shot);
+  const Eigen::MatrixXd all2 = smci::shot_descriptors<CGAL::Sequential_tag>(m2, shot);
+  double expected = 0;
+  for(int v : some)
+    expected += (all1.descriptors.row(v) - all2.row(Eigen::Index(f.pair.gt_12[std::size_t(v)]))).norm();
+  BOOST_TEST(smci::shot_disagreement<CGAL::Sequential_tag>(part, m2, f.pair.gt_12, shot) ==
+             expected / double(some.size()), boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(anchor_landmarks_come_before_the_others)
+{
+  smc::internal::Initialization_settings s;
+  s.landmarks = {{1, 2}, {3, 4}};
+  s.add_landmark(5, 6);  // not an anchor
+  s.add_anchor_landmark(7, 8);
+  s.add_landmark(9, 10);
+  s.add_anchor_landmark(11, 12);
+  const std::vector<std::pair<std::size_t, std::size_t> > expected = {{1, 2}, {3, 4}, {7, 8}, {11, 12}, {5, 6}, {9, 10}};
+  BOOST_TEST((s.landmarks == expected));
+  BOOST_TEST(s.anchor_landmarks == 4u);
+}
+
 BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
 {
   // A creature and an "ape" whose arms are as long as its legs, with a smaller head and tail: far

@@ -124,7 +124,7 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// distort those distances by more than 0.1 (`extremity_hypothesis_threshold`: pairs far from
 /// isometric, where every descriptor fit can be wrong as a whole) the extremity hypotheses: passes
 /// from assignments of the extremities of both shapes that keep the proportions of their geodesic
-/// distances, the least distorted maps kept. When the first pass's maps are already above that
+/// distances, as anchor landmarks, the maps that best keep the SHOT descriptors kept. When the first pass's maps are already above that
 /// threshold, the hypotheses run before the repairs, which then run only if the first maps are
 /// kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size`
 /// (grow_initial_maps()).
@@ -173,8 +173,8 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///   - `landmark_distance_weight`: weight of the geodesic distance fields of the landmarks
 ///     (divided by the square root of the mesh area) appended to the ZoomOut embeddings of every
 ///     pass, so that each vertex is matched to one about as far from every landmark; type
-///     `double`; default 10 (0: none). The landmarks of the repair passes and of the extremity
-///     hypotheses get no distance field.
+///     `double`; default 10 (0: none). The landmarks of the repair passes get no distance field,
+///     nor do the extremities of the hypotheses when landmarks are given.
 ///   - `number_of_repair_passes`: tear repair passes at most; type `int`; default 2 (0: no
 ///     repair).
 ///   - `tear_threshold`: a source edge is torn when its images are at least this far apart,
@@ -190,7 +190,9 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///   - `extremity_hypotheses`, `extremity_hypothesis_threshold`: on maps whose sample distortion is
 ///     above the threshold (pairs far from isometric, e.g. a gorilla and a man), this many passes
 ///     from the best assignments of the shapes' extremities (tips of limbs, head, tail) as
-///     landmarks, each with its tear repair, the least distorted maps kept (see
+///     landmarks, each with its tear repair; among those whose maps distort the samples at most
+///     `extremity_hypothesis_tolerance` (0.5) more than the descriptor-based maps, the one whose
+///     maps best keep the SHOT descriptors (radius `shot_radius`) is kept (see
 ///     try_extremity_hypotheses()); types `int` and `double`; defaults 2 and 0.1 (the best
 ///     assignment and the next, usually its mirror twin; each hypothesis costs about one
 ///     initialisation, and with `Parallel_tag` they run concurrently).

@@ -3,8 +3,9 @@
 //
 // Hypotheses for pairs far from isometric: the extremities of both shapes (the tips of limbs,
 // head, tail), their assignments that best preserve the proportions of their geodesic distances,
-// and a pass of the initialisation from each assignment as landmarks, kept when its maps distort
-// the sample distances less than the descriptor-based maps.
+// and a pass of the initialisation from each assignment as anchor landmarks; the hypothesis whose
+// maps best keep the local shape (SHOT) is kept, unless its maps distort the sample distances
+// much more than the descriptor-based maps.
 
 #ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
@@ -17,6 +18,7 @@
 #include <CGAL/Surface_mesh_correspondence/internal/initialization_distortion.h>
 #include <CGAL/Surface_mesh_correspondence/internal/initialization_settings.h>
 #include <CGAL/Surface_mesh_correspondence/internal/parallel.h>
+#include <CGAL/Surface_mesh_correspondence/internal/shot_impl.h>
 #include <CGAL/Surface_mesh_correspondence/internal/tear_repair.h>
 
 #include <Eigen/Core>
@@ -216,9 +218,53 @@ inline Eigen::MatrixXd extremity_descriptor_distances(const Eigen::MatrixXd& F1,
   return out;
 }
 
+/// SHOT descriptors (shot_descriptors(), unit norm) of some vertices of a mesh.
+struct Shot_samples
+{
+  std::vector<int> vertices;
+  Eigen::MatrixXd descriptors;
+};
+
+/// The SHOT descriptors of `vertices` of `m` (all vertices when empty).
+template <typename ConcurrencyTag>
+Shot_samples shot_samples(const Indexed_mesh& m, const std::vector<int>& vertices, const Shot_options& options)
+{
+  Shot_samples out;
+  out.vertices = vertices;
+  if(out.vertices.empty())
+  {
+    out.vertices.resize(std::size_t(m.number_of_vertices()));
+    std::iota(out.vertices.begin(), out.vertices.end(), 0);
+  }
+  out.descriptors = shot_descriptors<ConcurrencyTag>(m, out.vertices.data(), out.vertices.size(), options);
+  return out;
+}
+
+/// The SHOT disagreement of a map from the mesh of `from` to `to`: the mean over the vertices of
+/// `from` of the Euclidean distance between their SHOT descriptor and that of their image (both
+/// of unit norm, so in [0, 2]). SHOT describes the local shape around a point in a frame of its
+/// own: it is not intrinsic, so it tells the front of a body from its back (toes from heels, a
+/// face from the back of a head) where intrinsic descriptors and geodesic distances cannot.
+template <typename ConcurrencyTag>
+double shot_disagreement(const Shot_samples& from, const Indexed_mesh& to, const std::vector<std::size_t>& map,
+                         const Shot_options& options)
+{
+  if(from.vertices.empty()) return 0;
+  std::vector<int> images;
+  images.reserve(from.vertices.size());
+  for(int v : from.vertices) images.push_back(int(map[std::size_t(v)]));
+  const Eigen::MatrixXd at_images = shot_descriptors<ConcurrencyTag>(to, images.data(), images.size(), options);
+  double total = 0;
+  for(Eigen::Index r = 0; r < at_images.rows(); ++r) total += (from.descriptors.row(r) - at_images.row(r)).norm();
+  return total / double(at_images.rows());
+}
+
 /// One extremity hypothesis: the landmarks of `assignment` (indices into the extremities `e1` and
 /// `e2`) added to the user's, a pass with the fits of `s` in the orientation of the meshes, and its
-/// tear repair (repair_torn_maps()).
+/// tear repair (repair_torn_maps()). Without anchors among the user's landmarks the extremities
+/// are anchors (their geodesic distance fields guide ZoomOut, see landmark_distance_fields());
+/// otherwise the user's landmarks stay the only anchors: the tips of two species' limbs and heads
+/// do not correspond exactly, and their fields would pull the maps away from the user's.
 template <typename ConcurrencyTag>
 void run_extremity_hypothesis(const Initialization_shape& shape1, const Initialization_shape& shape2,
                               const Initialization_settings& s, const Shape_extremities& e1,
@@ -228,11 +274,16 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 {
   Initialization_settings hypothesis = s;
   hypothesis.landmark_orientation = 1;
-  // The extremities are not anchors: their distance fields would make a mirror twin's maps as
-  // consistent as the true hypothesis's, which the sample distortion could then not tell apart.
+  const bool anchors = std::min(s.anchor_landmarks, s.landmarks.size()) == 0;
   for(const auto& p : assignment.pairs)
-    hypothesis.add_landmark(std::size_t(e1.vertices[std::size_t(p.first)]),
-                            std::size_t(e2.vertices[std::size_t(p.second)]));
+  {
+    const std::size_t v1 = std::size_t(e1.vertices[std::size_t(p.first)]),
+                      v2 = std::size_t(e2.vertices[std::size_t(p.second)]);
+    if(anchors)
+      hypothesis.add_anchor_landmark(v1, v2);
+    else
+      hypothesis.add_landmark(v1, v2);
+  }
   result = single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, hypothesis, map_12, map_21, &cache);
   result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, hypothesis, map_12, map_21, result, &cache);
 }
@@ -241,26 +292,30 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 /// (pair_distortion(), stored in the result) is above `extremity_hypothesis_threshold`, a pass
 /// (single_pass_initial_maps() with all the fits, in the orientation of the meshes) and its tear
 /// repair (repair_torn_maps()) run from each of the `extremity_hypotheses` best assignments of the
-/// extremities of both shapes (extremity_assignments()) as landmarks, added to the user's; the
-/// maps of lowest sample distortion among the hypotheses are kept, unless the given
-/// (descriptor-based) maps distort the samples less by more than `extremity_hypothesis_tolerance`
-/// (relatively). Descriptor-based functional maps assume a near-isometry: on a gorilla and a man
+/// extremities of both shapes (extremity_assignments()) as anchor landmarks, added to the user's.
+/// Among the hypotheses whose maps distort the samples at most `extremity_hypothesis_tolerance`
+/// (relatively) more than the given (descriptor-based) maps, the one of lowest SHOT disagreement
+/// (shot_disagreement(), both directions, on the ZoomOut samples, SHOT radius `shot_radius`)
+/// replaces them. Descriptor-based functional maps assume a near-isometry: on a gorilla and a man
 /// they match the gorilla's long arms to the man's legs, and every fit does so; the extremities
 /// and the proportions of their distances survive the change of species. Such a swap of limbs
 /// can keep the sample distances better than the true map (the gorilla's arms are as long as the
-/// man's legs), hence the tolerance: on three pairs of the TOSCA_nonIso subset the hypothesis
-/// (scored by the proportions alone) distorted the samples 28-39% more than the wholly wrong
-/// descriptor maps, and its final maps had a third to three quarters of their error.
+/// man's legs), hence the tolerance. The best two assignments are mostly an assignment and its
+/// mirror twin (left and right limbs swapped): pinned at the extremities and held to the
+/// orientation of the meshes, the twin's maps turn the body front to back, which keeps the
+/// geodesic distances about as well on a body whose front and back are alike, but not the local
+/// shape of the toes, the heels and the face.
 ///
 /// Returns whether the hypotheses ran (the distortion was above the threshold). `repaired` says
 /// whether the given maps come out of the tear repair, whose result then holds the torn fraction
 /// of the first maps; otherwise the given maps are the first maps, and their torn fraction is
-/// reported when a hypothesis replaces them.
+/// reported when a hypothesis replaces them. `grow` says whether the hypotheses compared by SHOT
+/// grow to the final size first (grow_initial_maps()).
 template <typename ConcurrencyTag>
 bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initialization_shape& shape2,
                               const Initialization_settings& s, std::vector<std::size_t>& map_12,
                               std::vector<std::size_t>& map_21, Automatic_initialization_result& result,
-                              Initialization_pass_cache& cache, bool repaired)
+                              Initialization_pass_cache& cache, bool repaired, bool grow)
 {
   if(s.extremity_hypotheses <= 0) return false;
   prepare_distortion_samples<ConcurrencyTag>(shape1, shape2, s, cache);
@@ -334,42 +389,73 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
   }
   else
     for(std::size_t h = 0; h < assignments.size(); ++h) run(h);
-  double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
-  int passes = result.passes;
+  // The hypotheses that distort the samples at most the tolerance more than the descriptor maps.
+  std::vector<double> distortions(assignments.size());
+  std::vector<std::size_t> eligible;
   for(std::size_t h = 0; h < assignments.size(); ++h)
   {
-    std::vector<std::size_t>& r12 = runs[h].map_12;
-    std::vector<std::size_t>& r21 = runs[h].map_21;
-    Automatic_initialization_result& r = runs[h].result;
-    passes += r.passes;
-    functional_map_seconds += r.functional_map_seconds;
-    zoomout_seconds += r.zoomout_seconds;
-    const double d = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, r12, r21);
-    // Against the descriptor-based maps, with a tolerance; against a kept hypothesis, strictly.
-    const bool keep = result.extremity_hypothesis == 0 ? d <= (1 + s.extremity_hypothesis_tolerance) * distortion
-                                                       : d < distortion;
-    if(s.verbose)
+    distortions[h] = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, runs[h].map_12, runs[h].map_21);
+    if(distortions[h] <= (1 + s.extremity_hypothesis_tolerance) * distortion) eligible.push_back(h);
+  }
+  // Among them, the one whose maps keep the local shape best: a hypothesis and its mirror twin
+  // (the left and right limbs swapped, which the orientation turns into a map from front to back)
+  // keep the proportions and the sample distances alike, but not the SHOT descriptors. The maps
+  // are compared at their final size (unless `grow` is false), where they follow the shapes more
+  // closely: the growth of the kept maps then has nothing left to do.
+  std::vector<double> disagreements(assignments.size(), std::numeric_limits<double>::quiet_NaN());
+  std::optional<std::size_t> kept;
+  if(eligible.size() == 1) kept = eligible.front();
+  else if(!eligible.empty())
+  {
+    if(grow)
+      for(std::size_t h : eligible)
+        grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, runs[h].map_12, runs[h].map_21, runs[h].result);
+    Shot_options shot;
+    shot.relative_radius = s.shot_radius;
+    Shot_samples samples1, samples2;
+    invoke_both<ConcurrencyTag>(
+        [&] { samples1 = shot_samples<ConcurrencyTag>(*shape1.mesh, cache.first.samples.rows, shot); },
+        [&] { samples2 = shot_samples<ConcurrencyTag>(*shape2.mesh, cache.second.samples.rows, shot); });
+    for(std::size_t h : eligible)
+    {
+      disagreements[h] = (shot_disagreement<ConcurrencyTag>(samples1, *shape2.mesh, runs[h].map_12, shot) +
+                          shot_disagreement<ConcurrencyTag>(samples2, *shape1.mesh, runs[h].map_21, shot)) / 2;
+      if(!kept || disagreements[h] < disagreements[*kept]) kept = h;
+    }
+  }
+  if(s.verbose)
+    for(std::size_t h = 0; h < assignments.size(); ++h)
       std::cerr << "automatic_initial_maps: extremity hypothesis " << h + 1 << " (score " << assignments[h].score
-                << ", " << r.repair_passes << " tear repair passes): distortion " << d
-                << (keep ? " (kept)" : " (discarded)") << "\n";
-    if(!keep) continue;
+                << ", " << runs[h].result.repair_passes << " tear repair passes): distortion " << distortions[h]
+                << ", SHOT disagreement " << disagreements[h] << (kept && *kept == h ? " (kept)" : " (discarded)")
+                << "\n";
+  double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
+  int passes = result.passes;
+  for(const Hypothesis_maps& run : runs)
+  {
+    passes += run.result.passes;
+    functional_map_seconds += run.result.functional_map_seconds;
+    zoomout_seconds += run.result.zoomout_seconds;
+  }
+  if(kept)
+  {
+    const std::size_t h = *kept;
+    Automatic_initialization_result& r = runs[h].result;
     r.spectra_seconds = result.spectra_seconds;
-    // The torn fraction of the first maps (still in map_12 and map_21 until the first swap).
-    r.torn_fraction_before =
-        repaired || result.extremity_hypothesis > 0
-            ? result.torn_fraction_before
-            : pair_tears(*shape1.mesh, *shape2.mesh, map_12, map_21, s.tear_threshold).torn_fraction();
+    // The torn fraction of the first maps (still in map_12 and map_21).
+    r.torn_fraction_before = repaired ? result.torn_fraction_before
+                                      : pair_tears(*shape1.mesh, *shape2.mesh, map_12, map_21, s.tear_threshold)
+                                            .torn_fraction();
     r.repair_passes += result.repair_passes;
     r.distortion_repair_passes = result.distortion_repair_passes;
     r.sample_distortion_before = result.sample_distortion_before;
     r.extremities_1 = result.extremities_1;
     r.extremities_2 = result.extremities_2;
-    r.sample_distortion = d;
+    r.sample_distortion = distortions[h];
     r.extremity_hypothesis = int(h) + 1;
     result = r;
-    map_12.swap(r12);
-    map_21.swap(r21);
-    distortion = d;
+    map_12.swap(runs[h].map_12);
+    map_21.swap(runs[h].map_21);
   }
   result.extremity_hypotheses = int(assignments.size());
   result.functional_map_seconds = functional_map_seconds;
@@ -404,14 +490,14 @@ Automatic_initialization_result automatic_initial_maps(const Initialization_shap
   Automatic_initialization_result result =
       single_pass_initial_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, &cache);
   const bool hypotheses_ran =
-      try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, false);
+      try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, false, grow);
   if(result.extremity_hypothesis == 0)
   {
     result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
     if(s.distortion_repair_passes > 0)
       result = repair_distorted_maps<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, &cache);
     if(!hypotheses_ran)
-      try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, true);
+      try_extremity_hypotheses<ConcurrencyTag>(shape1, shape2, s, map_12, map_21, result, cache, true, grow);
   }
   if(grow) grow_initial_maps<ConcurrencyTag>(shape1, shape2, s, cache, map_12, map_21, result);
   result.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -102,12 +102,20 @@ struct Initialization_settings
   /// min(anchor_landmarks, landmarks.size()) landmarks. All given landmarks by default; those
   /// added by add_landmark() are not anchors.
   std::size_t anchor_landmarks = std::numeric_limits<std::size_t>::max();
-  /// Adds a landmark that is not an anchor (one of the core of a repaired map, or an extremity of
-  /// a hypothesis): the anchors stay those already given.
+  /// Adds a landmark that is not an anchor (one of the core of a repaired map): the anchors stay
+  /// those already given.
   void add_landmark(std::size_t vertex_1, std::size_t vertex_2)
   {
     anchor_landmarks = std::min(anchor_landmarks, landmarks.size());
     landmarks.emplace_back(vertex_1, vertex_2);
+  }
+  /// Adds an anchor landmark (an extremity of a hypothesis), after the anchors already given and
+  /// before the landmarks that are not anchors.
+  void add_anchor_landmark(std::size_t vertex_1, std::size_t vertex_2)
+  {
+    const std::size_t anchors = std::min(anchor_landmarks, landmarks.size());
+    landmarks.insert(landmarks.begin() + std::ptrdiff_t(anchors), std::make_pair(vertex_1, vertex_2));
+    anchor_landmarks = anchors + 1;
   }
   // Tear repair.
   /// Repair passes at most: after each set of maps whose tears cut off more than
@@ -158,6 +166,9 @@ struct Initialization_settings
   int extremity_sources = 32;
   double extremity_radius = 0.15;
   int maximum_extremities = 7;
+  /// The SHOT support radius (relative to the square root of the area) of the descriptors by
+  /// which the hypotheses are chosen (see try_extremity_hypotheses()).
+  double shot_radius = matching_defaults().shot_radius;
   /// The weight of the WKS distance between matched extremities in the score of an assignment
   /// (extremity_assignments()): among assignments that keep the proportions alike, it prefers
   /// hands matched to hands rather than to feet.
@@ -227,6 +238,7 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.tear_repair_distortion_tolerance = m.tear_repair_distortion_tolerance;
   s.tear_repair_landmarks = m.number_of_tear_repair_landmarks;
   s.landmark_distance_weight = m.landmark_distance_weight;
+  s.shot_radius = m.shot_radius;
   s.automatic_maps_comparison_threshold = m.automatic_maps_comparison_threshold;
   s.automatic_maps_maximum_distortion = m.automatic_maps_maximum_distortion;
   return s;

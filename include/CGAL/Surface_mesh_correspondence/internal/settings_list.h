@@ -38,7 +38,8 @@
   X(number_of_wks_energies, int, 100, 100, range_between(2, 100000), preparation, "WKS energies")                 \
   X(wks_variance, double, 7.0, 7.0, range_above(0), preparation, "WKS filter width, in energy steps")              \
   X(shot_radius, double, 0.08, 0.08, range_between(1e-6, 1), preparation,                                          \
-    "SHOT support radius, relative to the square root of the area")                                                \
+    "SHOT support radius, relative to the square root of the area (the refinement's descriptors and the "        \
+    "choice among extremity hypotheses)")                                                                          \
   X(distance_oracle, Distance_oracle_type, Distance_oracle_type::automatic, Distance_oracle_type::automatic,       \
     range_any(), preparation,                                                                                      \
     "geodesic distances of the refinement: dense (n^2 memory), local (exact within oracle_radius, landmark "       \
@@ -97,12 +98,13 @@
     "distort the sample distances less (0: none)")                                                                 \
   X(extremity_hypotheses, int, 2, 2, range_between(0, 100), initialization,                                       \
     "maps that distort the sample distances more than extremity_hypothesis_threshold: passes run from this many "  \
-    "assignments of the shapes' extremities as landmarks, the least distorted kept (0: none)")                    \
+    "assignments of the shapes' extremities as landmarks, the one whose maps best keep the SHOT descriptors "      \
+    "kept (0: none)")                                                                                              \
   X(extremity_hypothesis_threshold, double, 0.1, 0.1, range_at_least(0), initialization,                          \
     "sample distortion above which the extremity hypotheses run (pairs far from isometric)")                      \
   X(extremity_hypothesis_tolerance, double, 0.5, 0.5, range_at_least(0), initialization,                          \
-    "the maps of an extremity hypothesis replace the descriptor-based maps when they distort the sample "          \
-    "distances at most this fraction more")                                                                       \
+    "the maps of an extremity hypothesis may replace the descriptor-based maps only when they distort the "       \
+    "sample distances at most this fraction more")                                                                 \
   X(tear_threshold, double, 0.06, 0.06, range_above(0), initialization,                                            \
     "a source edge is torn when its images are this far apart (relative to the square root of the target's "      \
     "area)")                                                                                                       \
