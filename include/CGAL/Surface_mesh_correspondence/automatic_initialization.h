@@ -124,9 +124,9 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// distort those distances by more than 0.1 (`extremity_hypothesis_threshold`: pairs far from
 /// isometric, where every descriptor fit can be wrong as a whole) the extremity hypotheses: passes
 /// from assignments of the extremities of both shapes that keep the proportions of their geodesic
-/// distances, as anchor landmarks, the maps that best keep the SHOT descriptors kept. When the first pass's maps are already above that
-/// threshold, the hypotheses run before the repairs, which then run only if the first maps are
-/// kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size`
+/// distances, pinned as anchor landmarks; of their maps, those that best keep the SHOT descriptors
+/// are kept. When the first pass's maps are already above that threshold, the hypotheses run
+/// before the repairs, which then run only if the first maps are kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size`
 /// (grow_initial_maps()).
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
