@@ -125,8 +125,9 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 /// isometric, where every descriptor fit can be wrong as a whole) the extremity hypotheses: passes
 /// from assignments of the extremities of both shapes that keep the proportions of their geodesic
 /// distances, pinned as anchor landmarks; of their maps, those that best keep the SHOT descriptors
-/// are kept. When the first pass's maps are already above that threshold, the hypotheses run
-/// before the repairs, which then run only if the first maps are kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size`
+/// and the sample distances are kept. When the first pass's maps are already above that
+/// threshold, the hypotheses run before the repairs, which then run only if the first maps are
+/// kept. Finally the kept maps grow by the same coupled ZoomOut to `zoomout_final_size`
 /// (grow_initial_maps()).
 ///
 /// The meshes must be oriented alike (both outward or both inward); for closed meshes of opposite
@@ -175,6 +176,10 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     pass, so that each vertex is matched to one about as far from every landmark; type
 ///     `double`; default 10 (0: none). The landmarks of the repair passes get no distance field,
 ///     nor do the extremities of the hypotheses when landmarks are given.
+///   - `landmark_orientation_weight`: weight of the orientation-sensitive descriptors appended to
+///     the ZoomOut embeddings of the passes with distance fields, so that a limb is not matched to
+///     its mirror image about its axis (which the distances alone allow); type `double`; default 3
+///     (0: none).
 ///   - `number_of_repair_passes`: tear repair passes at most; type `int`; default 2 (0: no
 ///     repair).
 ///   - `tear_threshold`: a source edge is torn when its images are at least this far apart,
@@ -191,9 +196,10 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     above the threshold (pairs far from isometric, e.g. a gorilla and a man), this many passes
 ///     from the best assignments of the shapes' extremities (tips of limbs, head, tail) as
 ///     landmarks, each with its tear repair; among those whose maps distort the samples at most
-///     `extremity_hypothesis_tolerance` (0.5) more than the descriptor-based maps, the one whose
-///     maps best keep the SHOT descriptors (radius `shot_radius`) is kept (see
-///     try_extremity_hypotheses()); types `int` and `double`; defaults 2 and 0.1 (the best
+///     `extremity_hypothesis_tolerance` (0.5) more than the descriptor-based maps, the one of
+///     lowest SHOT disagreement (radius `shot_radius`) plus `extremity_hypothesis_distortion_weight`
+///     (2) times its sample distortion is kept (see try_extremity_hypotheses()); types `int` and
+///     `double`; defaults 2 and 0.1 (the best
 ///     assignment and the next, usually its mirror twin; each hypothesis costs about one
 ///     initialisation, and with `Parallel_tag` they run concurrently).
 ///   - `compare_with_automatic_maps`: repair_torn_maps() only (ignored here): whether the repaired

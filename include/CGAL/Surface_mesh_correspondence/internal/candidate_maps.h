@@ -138,7 +138,7 @@ struct Initialization_pass_data
   Functional_map_shape_terms T1, T2;
   const Initialization_pass_cache* cache = nullptr;
   Eigen::VectorXd feature_weights;
-  Eigen::MatrixXd features1, features2;  ///< ZoomOut features (zoomout_descriptor_weight > 0)
+  Eigen::MatrixXd features1, features2;  ///< ZoomOut descriptor features (see prepare_pass_features())
   /// ZoomOut features: the weighted distance fields of the anchor landmarks (see
   /// prepare_landmark_distances()).
   Eigen::MatrixXd distances1, distances2;
@@ -282,16 +282,21 @@ inline Eigen::MatrixXd zoomout_feature_columns(const Eigen::MatrixXd& D, const E
 inline void prepare_pass_features(const Initialization_settings& s, Initialization_pass_data& p)
 {
   // Feature weights: sqrt(w_c / sum w) times the ZoomOut descriptor weight, for all columns or the
-  // signed ones only.
+  // signed ones only. Without it, the signed columns in the passes with anchor landmarks (see
+  // Initialization_settings::landmark_orientation_weight).
+  const bool anchored = std::min(s.anchor_landmarks, p.landmarks.size()) > 0 && s.landmark_distance_weight > 0;
+  const double weight = s.zoomout_descriptor_weight > 0      ? s.zoomout_descriptor_weight
+                        : anchored && p.signed_count > 0 ? s.landmark_orientation_weight
+                                                         : 0.0;
   p.feature_weights = p.column_weights;
-  if(s.zoomout_signed_features_only && p.signed_count > 0)
+  if((s.zoomout_signed_features_only || s.zoomout_descriptor_weight <= 0) && p.signed_count > 0)
   {
     p.feature_weights.setZero();
     p.feature_weights.segment(p.signed_begin, p.signed_count) = p.column_weights.segment(p.signed_begin, p.signed_count);
   }
   if(p.feature_weights.sum() > 0)
-    p.feature_weights = (p.feature_weights / p.feature_weights.sum()).cwiseSqrt() * s.zoomout_descriptor_weight;
-  if(s.zoomout_descriptor_weight > 0)
+    p.feature_weights = (p.feature_weights / p.feature_weights.sum()).cwiseSqrt() * weight;
+  if(weight > 0)
   {
     p.features1 = zoomout_feature_columns(p.D1, p.feature_weights);
     p.features2 = zoomout_feature_columns(p.D2, p.feature_weights);
@@ -600,7 +605,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   if(sign < 0)
   {
     p.D2.middleCols(p.signed_begin, p.signed_count) *= -1.0;
-    if(s.zoomout_descriptor_weight > 0) p.features2 = zoomout_feature_columns(p.D2, p.feature_weights);
+    if(p.features2.cols() > 0) p.features2 = zoomout_feature_columns(p.D2, p.feature_weights);
   }
   result.functional_map_seconds = seconds_since(fit_start);
   if(s.verbose)

@@ -4,8 +4,8 @@
 // Hypotheses for pairs far from isometric: the extremities of both shapes (the tips of limbs,
 // head, tail), their assignments that best preserve the proportions of their geodesic distances,
 // and a pass of the initialisation from each assignment as anchor landmarks; the hypothesis whose
-// maps best keep the local shape (SHOT) is kept, unless its maps distort the sample distances
-// much more than the descriptor-based maps.
+// maps best keep the local shape (SHOT) and the sample distances is kept, unless its maps distort
+// the sample distances much more than the descriptor-based maps.
 
 #ifndef CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
 #define CGAL_SURFACE_MESH_CORRESPONDENCE_INTERNAL_EXTREMITY_HYPOTHESES_H
@@ -295,16 +295,18 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 /// extremities of both shapes (extremity_assignments()) as anchor landmarks, added to the user's.
 /// Among the hypotheses whose maps distort the samples at most `extremity_hypothesis_tolerance`
 /// (relatively) more than the given (descriptor-based) maps, the one of lowest SHOT disagreement
-/// (shot_disagreement(), both directions, on the ZoomOut samples, SHOT radius `shot_radius`)
-/// replaces them. Descriptor-based functional maps assume a near-isometry: on a gorilla and a man
-/// they match the gorilla's long arms to the man's legs, and every fit does so; the extremities
+/// (shot_disagreement(), both directions, on the ZoomOut samples, SHOT radius `shot_radius`) plus
+/// `extremity_hypothesis_distortion_weight` times its sample distortion replaces them.
+/// Descriptor-based functional maps assume a near-isometry: on a gorilla and a man they match the
+/// gorilla's long arms to the man's legs, and every fit does so; the extremities
 /// and the proportions of their distances survive the change of species. Such a swap of limbs
 /// can keep the sample distances better than the true map (the gorilla's arms are as long as the
 /// man's legs), hence the tolerance. The best two assignments are mostly an assignment and its
 /// mirror twin (left and right limbs swapped): pinned at the extremities and held to the
 /// orientation of the meshes, the twin's maps turn the body front to back, which keeps the
 /// geodesic distances about as well on a body whose front and back are alike, but not the local
-/// shape of the toes, the heels and the face.
+/// shape of the toes, the heels and the face; and its limbs twist between the extremities and the
+/// trunk.
 ///
 /// Returns whether the hypotheses ran (the distortion was above the threshold). `repaired` says
 /// whether the given maps come out of the tear repair, whose result then holds the torn fraction
@@ -397,12 +399,18 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
     distortions[h] = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, runs[h].map_12, runs[h].map_21);
     if(distortions[h] <= (1 + s.extremity_hypothesis_tolerance) * distortion) eligible.push_back(h);
   }
-  // Among them, the one whose maps keep the local shape best: a hypothesis and its mirror twin
-  // (the left and right limbs swapped, which the orientation turns into a map from front to back)
-  // keep the proportions and the sample distances alike, but not the SHOT descriptors. The maps
-  // are compared at their final size (unless `grow` is false), where they follow the shapes more
-  // closely: the growth of the kept maps then has nothing left to do.
+  // Among them, the one whose maps keep the local shape and the distances best: a hypothesis and
+  // its mirror twin (the left and right limbs swapped, which the orientation turns into a map from
+  // front to back) keep the proportions alike, but not the SHOT descriptors, and the twin's limbs,
+  // held to the orientation, twist between the extremities and the trunk, which distorts the
+  // samples a little more. The SHOT disagreement plus extremity_hypothesis_distortion_weight times
+  // the sample distortion decides. The maps are compared at their final size (unless `grow` is
+  // false), where they follow the shapes more closely: the growth of the kept maps then has
+  // nothing left to do.
   std::vector<double> disagreements(assignments.size(), std::numeric_limits<double>::quiet_NaN());
+  auto criterion = [&](std::size_t h) {
+    return disagreements[h] + s.extremity_hypothesis_distortion_weight * distortions[h];
+  };
   std::optional<std::size_t> kept;
   if(eligible.size() == 1) kept = eligible.front();
   else if(!eligible.empty())
@@ -420,14 +428,15 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
     {
       disagreements[h] = (shot_disagreement<ConcurrencyTag>(samples1, *shape2.mesh, runs[h].map_12, shot) +
                           shot_disagreement<ConcurrencyTag>(samples2, *shape1.mesh, runs[h].map_21, shot)) / 2;
-      if(!kept || disagreements[h] < disagreements[*kept]) kept = h;
+      if(!kept || criterion(h) < criterion(*kept)) kept = h;
     }
   }
   if(s.verbose)
     for(std::size_t h = 0; h < assignments.size(); ++h)
       std::cerr << "automatic_initial_maps: extremity hypothesis " << h + 1 << " (score " << assignments[h].score
                 << ", " << runs[h].result.repair_passes << " tear repair passes): distortion " << distortions[h]
-                << ", SHOT disagreement " << disagreements[h] << (kept && *kept == h ? " (kept)" : " (discarded)")
+                << ", SHOT disagreement " << disagreements[h] << ", criterion " << criterion(h)
+                << (kept && *kept == h ? " (kept)" : " (discarded)")
                 << "\n";
   double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
   int passes = result.passes;

@@ -98,6 +98,12 @@ struct Initialization_settings
   /// Weight of the geodesic distance fields of the anchor landmarks (divided by the square root of
   /// the mesh area) appended to the ZoomOut embeddings of a pass (0: none).
   double landmark_distance_weight = matching_defaults().landmark_distance_weight;
+  /// Weight of the orientation-sensitive (signed) descriptors appended to the ZoomOut embeddings
+  /// of a pass with anchor landmarks (0: none), unless zoomout_descriptor_weight sets the features
+  /// of every pass. The distance fields of the anchors tell where a vertex lies along the body, not
+  /// on which side of a limb: without these features ZoomOut cannot tell a limb from its mirror
+  /// image about its axis.
+  double landmark_orientation_weight = matching_defaults().landmark_orientation_weight;
   /// The anchor landmarks, whose distance fields are ZoomOut features: the first
   /// min(anchor_landmarks, landmarks.size()) landmarks. All given landmarks by default; those
   /// added by add_landmark() are not anchors.
@@ -169,6 +175,9 @@ struct Initialization_settings
   /// The SHOT support radius (relative to the square root of the area) of the descriptors by
   /// which the hypotheses are chosen (see try_extremity_hypotheses()).
   double shot_radius = matching_defaults().shot_radius;
+  /// The hypothesis kept is the one of lowest SHOT disagreement plus this times its sample
+  /// distortion (see try_extremity_hypotheses()).
+  double extremity_hypothesis_distortion_weight = matching_defaults().extremity_hypothesis_distortion_weight;
   /// The weight of the WKS distance between matched extremities in the score of an assignment
   /// (extremity_assignments()): among assignments that keep the proportions alike, it prefers
   /// hands matched to hands rather than to feet.
@@ -238,6 +247,8 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.tear_repair_distortion_tolerance = m.tear_repair_distortion_tolerance;
   s.tear_repair_landmarks = m.number_of_tear_repair_landmarks;
   s.landmark_distance_weight = m.landmark_distance_weight;
+  s.landmark_orientation_weight = m.landmark_orientation_weight;
+  s.extremity_hypothesis_distortion_weight = m.extremity_hypothesis_distortion_weight;
   s.shot_radius = m.shot_radius;
   s.automatic_maps_comparison_threshold = m.automatic_maps_comparison_threshold;
   s.automatic_maps_maximum_distortion = m.automatic_maps_maximum_distortion;
@@ -351,6 +362,12 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
   if(!(s.landmark_distance_weight >= 0) || !std::isfinite(s.landmark_distance_weight))
     fail("landmark_distance_weight = " + std::to_string(s.landmark_distance_weight) +
+         " must be non-negative and finite");
+  if(!(s.landmark_orientation_weight >= 0) || !std::isfinite(s.landmark_orientation_weight))
+    fail("landmark_orientation_weight = " + std::to_string(s.landmark_orientation_weight) +
+         " must be non-negative and finite");
+  if(!(s.extremity_hypothesis_distortion_weight >= 0) || !std::isfinite(s.extremity_hypothesis_distortion_weight))
+    fail("extremity_hypothesis_distortion_weight = " + std::to_string(s.extremity_hypothesis_distortion_weight) +
          " must be non-negative and finite");
 }
 

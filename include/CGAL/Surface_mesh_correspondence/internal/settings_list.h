@@ -105,6 +105,9 @@
   X(extremity_hypothesis_tolerance, double, 0.5, 0.5, range_at_least(0), initialization,                          \
     "the maps of an extremity hypothesis may replace the descriptor-based maps only when they distort the "       \
     "sample distances at most this fraction more")                                                                 \
+  X(extremity_hypothesis_distortion_weight, double, 2.0, 2.0, range_at_least(0), initialization,                 \
+    "the extremity hypothesis kept is the one of lowest SHOT disagreement plus this times its sample "            \
+    "distortion")                                                                                                  \
   X(tear_threshold, double, 0.06, 0.06, range_above(0), initialization,                                            \
     "a source edge is torn when its images are this far apart (relative to the square root of the target's "      \
     "area)")                                                                                                       \
@@ -118,6 +121,9 @@
   X(landmark_distance_weight, double, 10.0, 10.0, range_at_least(0), initialization,                              \
     "passes with the user's landmarks: weight of the geodesic distances to the landmarks (divided by the square "  \
     "root of the area) appended to the ZoomOut embeddings (0: none)")                                             \
+  X(landmark_orientation_weight, double, 3.0, 3.0, range_at_least(0), initialization,                            \
+    "passes with anchor landmarks: weight of the orientation-sensitive descriptors appended to the ZoomOut "      \
+    "embeddings (0: none)")                                                                                        \
   /* ------------------------------------------------ given maps */                                                \
   X(repair_given_maps, bool, true, true, range_any(), repair,                                                      \
     "given maps: repair their tears (swapped limbs) with landmarks from their core before the refinement")         \
