@@ -199,9 +199,9 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     `extremity_hypothesis_tolerance` (0.5) more than the descriptor-based maps, the one of
 ///     lowest SHOT disagreement (radius `shot_radius`) plus `extremity_hypothesis_distortion_weight`
 ///     (2) times its sample distortion is kept (see try_extremity_hypotheses()); types `int` and
-///     `double`; defaults 2 and 0.1 (the best
-///     assignment and the next, usually its mirror twin; each hypothesis costs about one
-///     initialisation, and with `Parallel_tag` they run concurrently).
+///     `double`; defaults 2 and 0.1 (the best assignment and the next, usually its mirror twin;
+///     each hypothesis costs about one initialisation, and with `Parallel_tag` they run
+///     concurrently).
 ///   - `compare_with_automatic_maps`: repair_torn_maps() only (ignored here): whether the repaired
 ///     given maps compete with the automatic maps; type `bool`; default true.
 ///   - `automatic_maps_comparison_threshold`: repair_torn_maps() with the comparison and

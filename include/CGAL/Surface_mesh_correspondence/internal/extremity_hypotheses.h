@@ -298,10 +298,10 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 /// (shot_disagreement(), both directions, on the ZoomOut samples, SHOT radius `shot_radius`) plus
 /// `extremity_hypothesis_distortion_weight` times its sample distortion replaces them.
 /// Descriptor-based functional maps assume a near-isometry: on a gorilla and a man they match the
-/// gorilla's long arms to the man's legs, and every fit does so; the extremities
-/// and the proportions of their distances survive the change of species. Such a swap of limbs
-/// can keep the sample distances better than the true map (the gorilla's arms are as long as the
-/// man's legs), hence the tolerance. The best two assignments are mostly an assignment and its
+/// gorilla's long arms to the man's legs, and every fit does so; the extremities and the
+/// proportions of their distances survive the change of species. Such a swap of limbs can keep
+/// the sample distances better than the true map (the gorilla's arms are as long as the man's
+/// legs), hence the tolerance. The best two assignments are mostly an assignment and its
 /// mirror twin (left and right limbs swapped): pinned at the extremities and held to the
 /// orientation of the meshes, the twin's maps turn the body front to back, which keeps the
 /// geodesic distances about as well on a body whose front and back are alike, but not the local
