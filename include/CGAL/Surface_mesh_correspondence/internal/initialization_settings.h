@@ -296,6 +296,10 @@ inline void check_initialization_settings(const Initialization_settings& s)
   auto fail = [](const std::string& what) {
     throw Invalid_parameter_error("automatic_initial_maps: " + what);
   };
+  auto finite_non_negative = [&](const char* name, double value) {
+    if(!(value >= 0) || !std::isfinite(value))
+      fail(std::string(name) + " = " + std::to_string(value) + " must be finite and non-negative");
+  };
   if(s.candidates.empty()) fail("no functional map configuration to try");
   for(const Fit_candidate& c : s.candidates)
   {
@@ -333,20 +337,12 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.tear_repair_passes < 0) fail("tear_repair_passes must be non-negative");
   if(s.distortion_repair_passes < 0) fail("distortion_repair_passes must be non-negative");
   if(s.extremity_hypotheses < 0) fail("extremity_hypotheses must be non-negative");
-  if(!(s.extremity_hypothesis_threshold >= 0) || !std::isfinite(s.extremity_hypothesis_threshold))
-    fail("extremity_hypothesis_threshold = " + std::to_string(s.extremity_hypothesis_threshold) +
-         " must be finite and non-negative");
-  if(!(s.extremity_hypothesis_tolerance >= 0) || !std::isfinite(s.extremity_hypothesis_tolerance))
-    fail("extremity_hypothesis_tolerance = " + std::to_string(s.extremity_hypothesis_tolerance) +
-         " must be finite and non-negative");
+  finite_non_negative("extremity_hypothesis_threshold", s.extremity_hypothesis_threshold);
+  finite_non_negative("extremity_hypothesis_tolerance", s.extremity_hypothesis_tolerance);
   if(s.extremity_sources < 1 || s.maximum_extremities < 0 || !(s.extremity_radius > 0))
     fail("extremity_sources and extremity_radius must be positive, maximum_extremities non-negative");
-  if(!(s.automatic_maps_comparison_threshold >= 0) || !std::isfinite(s.automatic_maps_comparison_threshold))
-    fail("automatic_maps_comparison_threshold = " + std::to_string(s.automatic_maps_comparison_threshold) +
-         " must be finite and non-negative");
-  if(!(s.automatic_maps_maximum_distortion >= 0) || !std::isfinite(s.automatic_maps_maximum_distortion))
-    fail("automatic_maps_maximum_distortion = " + std::to_string(s.automatic_maps_maximum_distortion) +
-         " must be finite and non-negative");
+  finite_non_negative("automatic_maps_comparison_threshold", s.automatic_maps_comparison_threshold);
+  finite_non_negative("automatic_maps_maximum_distortion", s.automatic_maps_maximum_distortion);
   if(!(s.distortion_core_tolerance > 0) || !std::isfinite(s.distortion_core_tolerance))
     fail("distortion_core_tolerance must be positive");
   if(!(s.distortion_core_agreement > 0) || !(s.distortion_core_agreement <= 1))
@@ -360,15 +356,9 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(!(s.tear_min_fraction >= 0) || !(s.tear_min_fraction < 1)) fail("tear_min_fraction must be in [0, 1)");
   if(!std::isfinite(s.tear_repair_distortion_tolerance)) fail("tear_repair_distortion_tolerance must be finite");
   if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
-  if(!(s.landmark_distance_weight >= 0) || !std::isfinite(s.landmark_distance_weight))
-    fail("landmark_distance_weight = " + std::to_string(s.landmark_distance_weight) +
-         " must be non-negative and finite");
-  if(!(s.landmark_orientation_weight >= 0) || !std::isfinite(s.landmark_orientation_weight))
-    fail("landmark_orientation_weight = " + std::to_string(s.landmark_orientation_weight) +
-         " must be non-negative and finite");
-  if(!(s.extremity_hypothesis_distortion_weight >= 0) || !std::isfinite(s.extremity_hypothesis_distortion_weight))
-    fail("extremity_hypothesis_distortion_weight = " + std::to_string(s.extremity_hypothesis_distortion_weight) +
-         " must be non-negative and finite");
+  finite_non_negative("landmark_distance_weight", s.landmark_distance_weight);
+  finite_non_negative("landmark_orientation_weight", s.landmark_orientation_weight);
+  finite_non_negative("extremity_hypothesis_distortion_weight", s.extremity_hypothesis_distortion_weight);
 }
 
 /// The number of eigenpairs the initialisation needs.

@@ -99,7 +99,7 @@
   X(extremity_hypotheses, int, 2, 2, range_between(0, 100), initialization,                                       \
     "maps that distort the sample distances more than extremity_hypothesis_threshold: passes run from this many "  \
     "assignments of the shapes' extremities as landmarks, the one whose maps best keep the SHOT descriptors "      \
-    "kept (0: none)")                                                                                              \
+    "and the sample distances kept (0: none)")                                                                     \
   X(extremity_hypothesis_threshold, double, 0.1, 0.1, range_at_least(0), initialization,                          \
     "sample distortion above which the extremity hypotheses run (pairs far from isometric)")                      \
   X(extremity_hypothesis_tolerance, double, 0.5, 0.5, range_at_least(0), initialization,                          \
