@@ -274,12 +274,13 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 {
   Initialization_settings hypothesis = s;
   hypothesis.landmark_orientation = 1;
-  const bool anchors = std::min(s.anchor_landmarks, s.landmarks.size()) == 0;
+  // The extremities are anchors only when the user's landmarks hold none.
+  const bool extremities_are_anchors = std::min(s.anchor_landmarks, s.landmarks.size()) == 0;
   for(const auto& p : assignment.pairs)
   {
     const std::size_t v1 = std::size_t(e1.vertices[std::size_t(p.first)]),
                       v2 = std::size_t(e2.vertices[std::size_t(p.second)]);
-    if(anchors)
+    if(extremities_are_anchors)
       hypothesis.add_anchor_landmark(v1, v2);
     else
       hypothesis.add_landmark(v1, v2);
