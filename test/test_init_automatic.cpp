@@ -15,6 +15,7 @@
 #include <cmath>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <random>
 #include <thread>
 #include <utility>
@@ -1231,6 +1232,74 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_keep_the_proportions)
   BOOST_TEST(std::abs(dd(1, 1) - 3.0 / 7.0) < 1e-15);
   // Fewer than three extremities on a side: no hypothesis.
   BOOST_TEST(smci::extremity_assignments(part.topLeftCorner(2, 2), all, 4).empty());
+}
+
+BOOST_AUTO_TEST_CASE(extremity_assignments_leave_out_a_tip_the_other_shape_lacks)
+{
+  namespace smci = smc::internal;
+  // Six points shared by both shapes (at different scales), and on each shape one more tip of its
+  // own, the other's lacks: mesh 1 has the six and its own (7), mesh 2 five of the six and its own
+  // (6). Every assignment of all six extremities of mesh 2 matches its own tip to something; with
+  // the penalty, the five shared tips matched alone score the penalty and nothing else.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto point = [&] { return Eigen::Vector3d(u(rng), u(rng), u(rng)); };
+  std::vector<Eigen::Vector3d> shared(6);
+  for(Eigen::Vector3d& p : shared) p = point();
+  const std::vector<Eigen::Vector3d> p1 = {shared[0], shared[1], shared[2], shared[3], shared[4], shared[5], point()};
+  const std::vector<Eigen::Vector3d> p2 = {point(), shared[3], shared[0], shared[4], shared[1], shared[2]};
+  auto distances = [](const std::vector<Eigen::Vector3d>& p, double scale) {
+    Eigen::MatrixXd d(Eigen::Index(p.size()), Eigen::Index(p.size()));
+    for(std::size_t i = 0; i < p.size(); ++i)
+      for(std::size_t j = 0; j < p.size(); ++j) d(Eigen::Index(i), Eigen::Index(j)) = scale * (p[i] - p[j]).norm();
+    return d;
+  };
+  const Eigen::MatrixXd D1 = distances(p1, 1.7), D2 = distances(p2, 0.4);
+  const double penalty = 0.05;
+  // Brute force: the injective maps of mesh 2's six extremities into mesh 1's seven, and those of
+  // five of them (each subset), with the penalty.
+  std::vector<double> reference;
+  std::vector<int> order = {0, 1, 2, 3, 4, 5, 6};
+  for(int left_out = -1; left_out < 6; ++left_out)
+  {
+    std::vector<int> b;
+    for(int j = 0; j < 6; ++j)
+      if(j != left_out) b.push_back(j);
+    const int k = int(b.size());
+    std::sort(order.begin(), order.end());
+    do
+    {
+      if(!std::is_sorted(order.begin() + k, order.end())) continue;  // each k-prefix once
+      const std::vector<int> a(order.begin(), order.begin() + k);
+      reference.push_back(smci::proportion_distortion(D1, D2, a, b) + (k < 6 ? penalty : 0.0));
+    } while(std::next_permutation(order.begin(), order.end()));
+  }
+  BOOST_TEST_REQUIRE(reference.size() == 5040u + 6u * 2520u);
+  std::sort(reference.begin(), reference.end());
+  const std::vector<smci::Extremity_assignment> a = smci::extremity_assignments(D1, D2, 12, {}, 0, penalty);
+  BOOST_TEST_REQUIRE(a.size() == 12u);
+  for(std::size_t k = 0; k < a.size(); ++k) BOOST_TEST(std::abs(a[k].score - reference[k]) < 1e-12);
+  // The best leaves out mesh 2's own tip and matches the five shared ones exactly.
+  const std::vector<std::pair<int, int> > expected = {{3, 1}, {0, 2}, {4, 3}, {1, 4}, {2, 5}};
+  BOOST_TEST(std::abs(a[0].score - penalty) < 1e-12);
+  std::vector<std::pair<int, int> > best = a[0].pairs;
+  std::sort(best.begin(), best.end(), [](auto x, auto y) { return x.second < y.second; });
+  BOOST_TEST((best == expected));
+  // Without the penalty (infinite), every extremity of mesh 2 is matched, and the best assignment
+  // pays for its own tip; so does it with a penalty too high to pay.
+  for(double p : {std::numeric_limits<double>::infinity(), 10.0})
+  {
+    const std::vector<smci::Extremity_assignment> all = smci::extremity_assignments(D1, D2, 3, {}, 0, p);
+    BOOST_TEST_REQUIRE(all.size() == 3u);
+    for(const smci::Extremity_assignment& x : all) BOOST_TEST(x.pairs.size() == 6u);
+    BOOST_TEST(all[0].score > penalty);
+  }
+  // At most one extremity is left out, and never below the minimum number of pairs: with six
+  // pairs required, the penalty changes nothing.
+  const std::vector<smci::Extremity_assignment> six = smci::extremity_assignments(D1, D2, 3, {}, 0, penalty, 6);
+  for(const smci::Extremity_assignment& x : six) BOOST_TEST(x.pairs.size() == 6u);
+  for(const smci::Extremity_assignment& x : smci::extremity_assignments(D1, D2, 5000, {}, 0, 0.0))
+    BOOST_TEST(x.pairs.size() >= 5u);
 }
 
 BOOST_AUTO_TEST_CASE(shot_disagreement_tells_front_from_back)

@@ -153,35 +153,42 @@ inline double proportion_distortion(const Eigen::MatrixXd& D1, const Eigen::Matr
 /// for seven extremities on each shape), by increasing score (ties in enumeration order). The
 /// score is proportion_distortion(), plus `descriptor_weight` times the mean of
 /// `descriptor_distances(i, j)` over the matched pairs (i of mesh 1, j of mesh 2) when that matrix
-/// is given (not empty). Empty when either shape has fewer than three extremities.
-inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::MatrixXd& D1, const Eigen::MatrixXd& D2,
-                                                               std::size_t count,
-                                                               const Eigen::MatrixXd& descriptor_distances = {},
-                                                               double descriptor_weight = 0)
+/// is given (not empty). When `unmatched_penalty` is finite, the assignments that leave one
+/// extremity of the smaller shape unmatched compete too, at this cost added to their score, as
+/// long as they match at least `minimum_pairs` extremities: a shape may have a tip the other has
+/// not (a gorilla's jaw beside its head, the buttocks of a woman standing straight), and matched
+/// to anything it distorts the proportions of every pair it belongs to. Empty when either shape
+/// has fewer than three extremities.
+inline std::vector<Extremity_assignment> extremity_assignments(
+    const Eigen::MatrixXd& D1, const Eigen::MatrixXd& D2, std::size_t count,
+    const Eigen::MatrixXd& descriptor_distances = {}, double descriptor_weight = 0,
+    double unmatched_penalty = std::numeric_limits<double>::infinity(), int minimum_pairs = 5)
 {
   std::vector<Extremity_assignment> out;
   const int n1 = int(D1.rows()), n2 = int(D2.rows());
   if(std::min(n1, n2) < 3 || count == 0) return out;
-  const bool forward = n1 <= n2;  // every extremity of mesh 1 is matched
-  const int k = std::min(n1, n2), l = std::max(n1, n2);
-  std::vector<int> fixed(static_cast<std::size_t>(k)), chosen;
-  std::iota(fixed.begin(), fixed.end(), 0);
+  const bool forward = n1 <= n2;  // the extremities of mesh 1 are the ones matched (or left out)
+  const int m = std::min(n1, n2), l = std::max(n1, n2);
+  const int fewest = std::isfinite(unmatched_penalty) ? std::max({3, minimum_pairs, m - 1}) : m;
+  std::vector<int> fixed, chosen;
   std::vector<char> used(std::size_t(l), 0);
   std::vector<Extremity_assignment> all;
-  // Depth-first enumeration of the k-permutations of the l extremities.
+  // Depth-first enumeration of the k-permutations of the l extremities, for the extremities
+  // `fixed` of the smaller shape.
   auto enumerate = [&](auto&& self) -> void {
-    if(int(chosen.size()) == k)
+    const std::size_t k = fixed.size();
+    if(chosen.size() == k)
     {
       Extremity_assignment a;
       a.score = forward ? proportion_distortion(D1, D2, fixed, chosen) : proportion_distortion(D1, D2, chosen, fixed);
-      for(int i = 0; i < k; ++i)
-        a.pairs.emplace_back(forward ? i : chosen[std::size_t(i)], forward ? chosen[std::size_t(i)] : i);
+      for(std::size_t i = 0; i < k; ++i) a.pairs.emplace_back(forward ? fixed[i] : chosen[i], forward ? chosen[i] : fixed[i]);
       if(descriptor_distances.size() > 0)
       {
         double total = 0;
         for(const auto& p : a.pairs) total += descriptor_distances(p.first, p.second);
         a.score += descriptor_weight * total / double(k);
       }
+      if(int(k) < m) a.score += unmatched_penalty * double(m - int(k));
       all.push_back(std::move(a));
       return;
     }
@@ -195,7 +202,17 @@ inline std::vector<Extremity_assignment> extremity_assignments(const Eigen::Matr
         used[std::size_t(j)] = 0;
       }
   };
+  // Every extremity of the smaller shape, then (when allowed) all of them but one.
+  fixed.resize(std::size_t(m));
+  std::iota(fixed.begin(), fixed.end(), 0);
   enumerate(enumerate);
+  for(int left_out = 0; fewest < m && left_out < m; ++left_out)
+  {
+    fixed.clear();
+    for(int i = 0; i < m; ++i)
+      if(i != left_out) fixed.push_back(i);
+    enumerate(enumerate);
+  }
   std::stable_sort(all.begin(), all.end(),
                    [](const Extremity_assignment& x, const Extremity_assignment& y) { return x.score < y.score; });
   all.resize(std::min(all.size(), count));
@@ -343,7 +360,7 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
       e1.distances, e2.distances, std::size_t(s.extremity_hypotheses),
       extremity_descriptor_distances(wave_kernel_signature_rows(*shape1.spectrum, e1.vertices),
                                      wave_kernel_signature_rows(*shape2.spectrum, e2.vertices)),
-      s.extremity_descriptor_weight);
+      s.extremity_descriptor_weight, s.unmatched_extremity_penalty, s.minimum_extremity_pairs);
   result.extremities_1 = int(e1.vertices.size());
   result.extremities_2 = int(e2.vertices.size());
   if(s.verbose)

@@ -180,8 +180,13 @@ struct Initialization_settings
   double extremity_hypothesis_distortion_weight = matching_defaults().extremity_hypothesis_distortion_weight;
   /// The weight of the WKS distance between matched extremities in the score of an assignment
   /// (extremity_assignments()): among assignments that keep the proportions alike, it prefers
-  /// hands matched to hands rather than to feet.
-  double extremity_descriptor_weight = 0.1;
+  /// hands matched to hands rather than to feet, and a head to a head rather than to a jaw.
+  double extremity_descriptor_weight = 0.5;
+  /// An assignment may leave one extremity of the shape with fewer extremities unmatched, at this
+  /// cost added to its score, when it still matches at least minimum_extremity_pairs (see
+  /// extremity_assignments(); infinity: every extremity of that shape is matched).
+  double unmatched_extremity_penalty = 0.05;
+  int minimum_extremity_pairs = 5;
   /// Passes in all (the first one, tear repair and distortion repair): the distortion repair runs
   /// only while this allows.
   int maximum_passes = 3;
@@ -341,6 +346,9 @@ inline void check_initialization_settings(const Initialization_settings& s)
   finite_non_negative("extremity_hypothesis_tolerance", s.extremity_hypothesis_tolerance);
   if(s.extremity_sources < 1 || s.maximum_extremities < 0 || !(s.extremity_radius > 0))
     fail("extremity_sources and extremity_radius must be positive, maximum_extremities non-negative");
+  finite_non_negative("extremity_descriptor_weight", s.extremity_descriptor_weight);
+  if(!(s.unmatched_extremity_penalty >= 0)) fail("unmatched_extremity_penalty must be non-negative");
+  if(s.minimum_extremity_pairs < 3) fail("minimum_extremity_pairs must be at least 3");
   finite_non_negative("automatic_maps_comparison_threshold", s.automatic_maps_comparison_threshold);
   finite_non_negative("automatic_maps_maximum_distortion", s.automatic_maps_maximum_distortion);
   if(!(s.distortion_core_tolerance > 0) || !std::isfinite(s.distortion_core_tolerance))
