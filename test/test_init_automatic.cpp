@@ -1300,6 +1300,17 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_leave_out_a_tip_the_other_shape_lacks
   for(const smci::Extremity_assignment& x : six) BOOST_TEST(x.pairs.size() == 6u);
   for(const smci::Extremity_assignment& x : smci::extremity_assignments(D1, D2, 5000, {}, 0, 0.0))
     BOOST_TEST(x.pairs.size() >= 5u);
+  // Settings out of range are refused.
+  smci::Initialization_settings bad;
+  bad.unmatched_extremity_penalty = -0.1;
+  BOOST_CHECK_THROW(smci::check_initialization_settings(bad), smc::Invalid_parameter_error);
+  bad = smci::Initialization_settings();
+  bad.minimum_extremity_pairs = 2;
+  BOOST_CHECK_THROW(smci::check_initialization_settings(bad), smc::Invalid_parameter_error);
+  bad = smci::Initialization_settings();
+  bad.extremity_descriptor_weight = std::numeric_limits<double>::quiet_NaN();
+  BOOST_CHECK_THROW(smci::check_initialization_settings(bad), smc::Invalid_parameter_error);
+  BOOST_CHECK_NO_THROW(smci::check_initialization_settings(smci::Initialization_settings()));
 }
 
 BOOST_AUTO_TEST_CASE(shot_disagreement_tells_front_from_back)

@@ -181,7 +181,8 @@ inline std::vector<Extremity_assignment> extremity_assignments(
     {
       Extremity_assignment a;
       a.score = forward ? proportion_distortion(D1, D2, fixed, chosen) : proportion_distortion(D1, D2, chosen, fixed);
-      for(std::size_t i = 0; i < k; ++i) a.pairs.emplace_back(forward ? fixed[i] : chosen[i], forward ? chosen[i] : fixed[i]);
+      for(std::size_t i = 0; i < k; ++i)
+        a.pairs.emplace_back(forward ? fixed[i] : chosen[i], forward ? chosen[i] : fixed[i]);
       if(descriptor_distances.size() > 0)
       {
         double total = 0;
