@@ -1313,6 +1313,58 @@ BOOST_AUTO_TEST_CASE(extremity_assignments_leave_out_a_tip_the_other_shape_lacks
   BOOST_CHECK_NO_THROW(smci::check_initialization_settings(smci::Initialization_settings()));
 }
 
+BOOST_AUTO_TEST_CASE(extremity_assignments_leave_out_the_tips_another_species_lacks)
+{
+  namespace smci = smc::internal;
+  // The creature with a horn on its brow, and an "ape" (arms as long as its legs, smaller head and
+  // tail) with a hump on its belly instead: seven extremities each, six of which correspond.
+  std::vector<Limb> l1 = creature_limbs(0.9, 0.75, 0.6, 0.5, 0.45, 0.35);
+  l1.push_back({0.0, 0.6, 0.8, 0.4, 0.04});
+  std::vector<Limb> ape = creature_limbs(0.9, 0.75, 0.9, 0.75, 0.3, 0.2);
+  ape.push_back({0.0, -0.2, 1.0, 0.45, 0.05});
+  const Pair_fixture f(transformed(icosphere(3), [l1](const Point& p) { return on_creature(l1, p); }),
+                       [ape](const Point& p) { return on_creature(ape, p); });
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
+  const smci::Fast_marching_geometry g1(m1), g2(m2);
+  const smci::Shape_extremities e1 = smci::shape_extremities(m1, g1, smci::farthest_samples(m1, 32), 0.15, 8);
+  const smci::Shape_extremities e2 = smci::shape_extremities(m2, g2, smci::farthest_samples(m2, 32), 0.15, 8);
+  BOOST_TEST_REQUIRE(e1.vertices.size() == 7u);
+  BOOST_TEST_REQUIRE(e2.vertices.size() == 7u);
+  // A pair is right when the true image of mesh 1's extremity is near mesh 2's.
+  const double scale2 = std::sqrt(m2.total_area);
+  auto right_pairs = [&](const smci::Extremity_assignment& a) {
+    int right = 0;
+    for(const auto& p : a.pairs)
+    {
+      const int image = int(f.pair.gt_12[std::size_t(e1.vertices[std::size_t(p.first)])]);
+      right += (m2.point(image) - m2.point(e2.vertices[std::size_t(p.second)])).norm() < 0.05 * scale2;
+    }
+    return right;
+  };
+  // Every extremity matched: the horn goes somewhere, the hump gets something.
+  const std::vector<smci::Extremity_assignment> all = smci::extremity_assignments(e1.distances, e2.distances, 1);
+  BOOST_TEST_REQUIRE(all.size() == 1u);
+  BOOST_TEST(all[0].pairs.size() == 7u);
+  // One left out at the default cost: the six tips both have, all right.
+  const std::vector<smci::Extremity_assignment> some = smci::extremity_assignments(
+      e1.distances, e2.distances, 1, {}, 0, smci::Initialization_settings().unmatched_extremity_penalty);
+  BOOST_TEST_REQUIRE(some.size() == 1u);
+  BOOST_TEST_MESSAGE("horn and hump: best of all seven " << all[0].score << " (" << right_pairs(all[0])
+                     << " right), of six " << some[0].score << " (" << right_pairs(some[0]) << " right)");
+  BOOST_TEST(some[0].pairs.size() == 6u);
+  BOOST_TEST(right_pairs(some[0]) == 6);
+  // The pipeline from those hypotheses (the pair distorts the samples less than the default
+  // threshold: lowered to 0).
+  std::vector<std::size_t> h12, h21;
+  const smc::Automatic_initialization_result r = smc::automatic_initial_maps(
+      f.pair.m1, f.pair.m2, h12, h21, params::extremity_hypothesis_threshold(0.0));
+  const double e12 = f.error_12(h12, f.pair.gt_12), e21 = f.error_21(h21, f.pair.gt_21);
+  BOOST_TEST_MESSAGE("horn and hump: errors " << e12 << " " << e21 << ", hypothesis " << r.extremity_hypothesis);
+  BOOST_TEST(r.extremity_hypothesis >= 1);
+  BOOST_TEST(e12 < 0.02);
+  BOOST_TEST(e21 < 0.02);
+}
+
 BOOST_AUTO_TEST_CASE(shot_disagreement_tells_front_from_back)
 {
   // The creature and its posed copy: the true map against the map turned front to back (rotated
