@@ -169,7 +169,8 @@ inline std::vector<Extremity_assignment> extremity_assignments(
   if(std::min(n1, n2) < 3 || count == 0) return out;
   const bool forward = n1 <= n2;  // the extremities of mesh 1 are the ones matched (or left out)
   const int m = std::min(n1, n2), l = std::max(n1, n2);
-  const int fewest = std::isfinite(unmatched_penalty) ? std::max({3, minimum_pairs, m - 1}) : m;
+  // With a finite penalty, one extremity of the smaller shape may stay unmatched.
+  const bool leave_one_out = std::isfinite(unmatched_penalty) && m - 1 >= std::max(3, minimum_pairs);
   std::vector<int> fixed, chosen;
   std::vector<char> used(std::size_t(l), 0);
   std::vector<Extremity_assignment> all;
@@ -207,7 +208,7 @@ inline std::vector<Extremity_assignment> extremity_assignments(
   fixed.resize(std::size_t(m));
   std::iota(fixed.begin(), fixed.end(), 0);
   enumerate(enumerate);
-  for(int left_out = 0; fewest < m && left_out < m; ++left_out)
+  for(int left_out = 0; leave_one_out && left_out < m; ++left_out)
   {
     fixed.clear();
     for(int i = 0; i < m; ++i)
