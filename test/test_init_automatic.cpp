@@ -368,6 +368,74 @@ BOOST_AUTO_TEST_CASE(landmark_distance_fields_match_great_circles)
 #endif
 }
 
+BOOST_AUTO_TEST_CASE(landmark_chirality_fields_match_great_circles)
+{
+  // On the unit sphere the direction away from a landmark p at x is u_p = ((p.x) x - p) / |...|,
+  // and the chirality feature of landmarks p, q at x is weight / sqrt(pairs) times
+  // <x, u_p x u_q> (the outward normal is x). The mirror image of the sphere (x -> -x, the
+  // triangles reversed so that they still face outwards) has the opposite features.
+  namespace smci = smc::internal;
+  const Mesh sphere = icosphere(4);
+  const smci::Indexed_mesh m = smci::make_indexed_mesh(sphere);
+  const smc::Laplace_beltrami_spectrum spectrum(sphere, params::number_of_eigenpairs(30));
+  const std::vector<int> sources = {0, 700, 2000};
+  const double weight = 2.0, unit = weight / std::sqrt(3.0);
+  auto fields = [&](const smci::Indexed_mesh& mesh) {
+    return smci::landmark_distance_fields<CGAL::Sequential_tag>(smci::Fast_marching_geometry(mesh), sources,
+                                                                std::sqrt(mesh.total_area), 1.0);
+  };
+  const Eigen::MatrixXd F = smci::landmark_chirality_fields(m, spectrum, fields(m), 0, weight);
+  BOOST_TEST_REQUIRE(F.rows() == Eigen::Index(m.number_of_vertices()));
+  BOOST_TEST_REQUIRE(F.cols() == 3);
+  const std::array<std::pair<int, int>, 3> pairs = {{{0, 1}, {0, 2}, {1, 2}}};
+  double total = 0;
+  std::size_t compared = 0, clear = 0, wrong_sign = 0;
+  for(int v = 0; v < m.number_of_vertices(); ++v)
+  {
+    const Eigen::Vector3d x = m.point(v).normalized();
+    for(std::size_t k = 0; k < pairs.size(); ++k)
+    {
+      const Eigen::Vector3d p = m.point(sources[std::size_t(pairs[k].first)]).normalized(),
+                            q = m.point(sources[std::size_t(pairs[k].second)]).normalized();
+      // Away from the landmarks and their antipodes, where the directions are not defined.
+      if(std::min(std::abs(p.dot(x)), std::abs(q.dot(x))) > std::cos(0.3)) continue;
+      const Eigen::Vector3d u = (p.dot(x) * x - p).normalized(), w = (q.dot(x) * x - q).normalized();
+      const double exact = unit * x.dot(u.cross(w));
+      total += std::abs(F(v, Eigen::Index(k)) - exact);
+      ++compared;
+      if(std::abs(exact) > 0.2 * unit)
+      {
+        ++clear;
+        if(exact * F(v, Eigen::Index(k)) <= 0) ++wrong_sign;
+      }
+    }
+  }
+  BOOST_TEST_REQUIRE(compared > 5000u);
+  BOOST_TEST_MESSAGE("chirality features on the sphere: mean error " << total / double(compared) / unit
+                     << " (relative to weight / sqrt(pairs)) over " << compared << " values, " << wrong_sign
+                     << " of " << clear << " clear turns of the wrong sign");
+  BOOST_TEST(total / double(compared) < 0.03 * unit);
+  BOOST_TEST(wrong_sign == 0u);
+  // The mirror image: the same distance fields, the opposite turns (smoothed or not).
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3> > triangles;
+  for(int v = 0; v < m.number_of_vertices(); ++v)
+    points.push_back(Eigen::Vector3d(-m.point(v).x(), m.point(v).y(), m.point(v).z()));
+  for(int t = 0; t < m.number_of_triangles(); ++t)
+    triangles.push_back({{m.triangles(t, 0), m.triangles(t, 2), m.triangles(t, 1)}});
+  const smci::Indexed_mesh mirror = soup_mesh(points, triangles);
+  BOOST_TEST((fields(mirror) - fields(m)).cwiseAbs().maxCoeff() < 1e-12);
+  for(int smoothing : {0, 30})
+  {
+    const Eigen::MatrixXd a = smci::landmark_chirality_fields(m, spectrum, fields(m), smoothing, weight),
+                          b = smci::landmark_chirality_fields(mirror, spectrum, fields(mirror), smoothing, weight);
+    BOOST_TEST((a + b).cwiseAbs().maxCoeff() < 1e-9 * unit);
+    BOOST_TEST(a.cwiseAbs().maxCoeff() > 0.5 * unit);
+  }
+  // One landmark: no pair, no feature.
+  BOOST_TEST(smci::landmark_chirality_fields(m, spectrum, fields(m).leftCols(1), 0, weight).cols() == 0);
+}
+
 BOOST_AUTO_TEST_CASE(row_cache_gives_the_distances_of_new_runs)
 {
   // The distortion scores of later passes look up fast-marching rows of earlier ones. Sequences of
@@ -1480,10 +1548,10 @@ BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
   BOOST_TEST(r.sample_distortion_before == first.sample_distortion);
   BOOST_TEST(r.torn_fraction_before == first.torn_fraction_before);
   BOOST_TEST(r.torn_fraction_before > 0);
-  // The two hypotheses of r (the best assignment and the next, here its mirror twin) run
-  // concurrently with Parallel_tag, on their own pass caches: the same maps and choice as one
-  // after the other (r, Sequential_tag).
-  BOOST_TEST_REQUIRE(r.extremity_hypotheses == 2);  // more than one: they run concurrently
+  // The three hypotheses of r (the default: the best assignment, its mirror twin and one with a
+  // pair of limbs swapped) run concurrently with Parallel_tag, on their own pass caches: the same
+  // maps and choice as one after the other (r, Sequential_tag).
+  BOOST_TEST_REQUIRE(r.extremity_hypotheses == 3);  // more than one: they run concurrently
 #ifdef CGAL_LINKED_WITH_TBB
   std::vector<std::size_t> c12, c21;
   const smc::Automatic_initialization_result concurrent = smc::automatic_initial_maps<CGAL::Parallel_tag>(
@@ -1557,6 +1625,7 @@ BOOST_AUTO_TEST_CASE(landmark_distances_keep_the_limbs_of_another_species)
     smc::Matching_settings settings;
     settings.set("extremity_hypotheses", 0.0);
     settings.set("landmark_orientation_weight", 0.0);  // the distances alone
+    settings.set("landmark_chirality_weight", 0.0);
     settings.set("landmark_distance_weight", weight);
     smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
                                 params::landmarks(landmarks, params::matching_settings(settings)));
@@ -1657,9 +1726,9 @@ BOOST_AUTO_TEST_CASE(orientation_features_join_the_anchored_passes)
   BOOST_TEST_MESSAGE("another species from its extremities: errors " << a << " " << a_21
                      << " without the orientation features, " << o << " " << o_21 << " with them; orientation "
                      << "agreement " << without.orientation_agreement << " -> " << with.orientation_agreement);
-  // Measured: errors 0.047 and 0.043 without, 0.053 and 0.048 with them; orientation agreement
-  // 0.999 and 0.990. (On the TOSCA_nonIso pairs, where the limbs do turn, the features lower the
-  // error: see doc/automatic_initialization.md.)
+  // Measured (with the chirality features): errors 0.031 and 0.028 without, 0.036 and 0.033 with
+  // them; orientation agreement 0.992 and 0.989. (On the TOSCA_nonIso pairs, where the limbs do
+  // turn, the features lower the error: see doc/automatic_initialization.md.)
   BOOST_TEST(with.orientation_agreement > 0.98);
   BOOST_TEST(o < 0.065);
   BOOST_TEST(o_21 < 0.065);
@@ -1671,6 +1740,47 @@ BOOST_AUTO_TEST_CASE(orientation_features_join_the_anchored_passes)
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
                                                 params::extremity_hypothesis_distortion_weight(-1.0)),
                     smc::Invalid_parameter_error);
+}
+
+BOOST_AUTO_TEST_CASE(chirality_features_keep_the_sides_of_another_species)
+{
+  // From the true extremities of another species (longer arms, shorter legs, a bigger head), the
+  // turns between the directions to each two anchors join the ZoomOut embeddings: they tell the
+  // two sides of the body and of each limb apart where the distances to the anchors cannot, so
+  // both maps are more accurate with them than without (everything else at its default).
+  namespace smci = smc::internal;
+  const std::vector<Limb> other = creature_limbs(0.5, 0.45, 1.1, 1.0, 0.6, 0.1);
+  const Pair_fixture f(creature(3, false), [other](const Point& p) { return on_creature(other, p); });
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1);
+  const smci::Fast_marching_geometry g1(m1);
+  const smci::Shape_extremities e = smci::shape_extremities(m1, g1, smci::farthest_samples(m1, 32), 0.15, 8);
+  BOOST_TEST_REQUIRE(e.vertices.size() == 6u);
+  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
+  for(int v : e.vertices) landmarks.emplace_back(std::size_t(v), f.pair.gt_12[std::size_t(v)]);
+  auto run = [&](double weight, std::vector<std::size_t>& m12, std::vector<std::size_t>& m21) {
+    smc::Matching_settings settings;
+    settings.set("extremity_hypotheses", 0.0);
+    settings.set("landmark_chirality_weight", weight);
+    return smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
+                                       params::landmarks(landmarks, params::matching_settings(settings)));
+  };
+  std::vector<std::size_t> a12, a21, c12, c21;
+  run(0.0, a12, a21);
+  const smc::Automatic_initialization_result with = run(smci::matching_defaults().landmark_chirality_weight, c12, c21);
+  const double a = f.error_12(a12, f.pair.gt_12), a_21 = f.error_21(a21, f.pair.gt_21);
+  const double c = f.error_12(c12, f.pair.gt_12), c_21 = f.error_21(c21, f.pair.gt_21);
+  BOOST_TEST_MESSAGE("another species from its extremities: errors " << a << " " << a_21
+                     << " without the chirality features, " << c << " " << c_21 << " with them; orientation "
+                     << "agreement " << with.orientation_agreement);
+  // Measured: errors 0.053 and 0.048 without, 0.036 and 0.033 with them.
+  BOOST_TEST(c < 0.85 * a);
+  BOOST_TEST(c_21 < 0.85 * a_21);
+  BOOST_TEST(with.orientation_agreement > 0.98);
+  // Negative weights are refused.
+  std::vector<std::size_t> m12, m21;
+  BOOST_CHECK_THROW(
+      smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::landmark_chirality_weight(-1.0)),
+      smc::Invalid_parameter_error);
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_named)

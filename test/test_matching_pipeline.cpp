@@ -558,8 +558,9 @@ std::string initialization_fingerprint(const smc::Matching_settings& m)
     << s.tear_min_fraction << ' ' << s.tear_repair_distortion_tolerance << ' ' << s.tear_repair_landmarks << ' '
     << s.distortion_repair_passes << ' ' << s.extremity_hypotheses << ' ' << s.extremity_hypothesis_threshold << ' '
     << s.extremity_hypothesis_tolerance << ' ' << s.shot_radius << ' ' << s.landmark_distance_weight << ' '
-    << s.landmark_orientation_weight << ' ' << s.extremity_hypothesis_distortion_weight << ' '
-    << s.automatic_maps_comparison_threshold << ' ' << s.automatic_maps_maximum_distortion;
+    << s.landmark_orientation_weight << ' ' << s.landmark_chirality_weight << ' '
+    << s.extremity_hypothesis_distortion_weight << ' ' << s.automatic_maps_comparison_threshold << ' '
+    << s.automatic_maps_maximum_distortion;
   return o.str();
 }
 std::string refinement_fingerprint(const smc::Matching_settings& m)

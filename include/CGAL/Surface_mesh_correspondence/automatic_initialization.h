@@ -180,6 +180,12 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     the ZoomOut embeddings of the passes with distance fields, so that a limb is not matched to
 ///     its mirror image about its axis (which the distances alone allow); type `double`; default 3
 ///     (0: none).
+///   - `landmark_chirality_weight`: weight of the chirality features of the passes with two or
+///     more anchor landmarks appended to the ZoomOut embeddings: for each two anchors, the turn
+///     from the direction away from one to the direction away from the other, seen from the
+///     outside (the sine of the angle between the gradients of their distance fields). A part
+///     mirrored about a plane (a torso turned front to back) keeps the distances to the anchors
+///     and reverses these turns; type `double`; default 10 (0: none).
 ///   - `number_of_repair_passes`: tear repair passes at most; type `int`; default 2 (0: no
 ///     repair).
 ///   - `tear_threshold`: a source edge is torn when its images are at least this far apart,
@@ -199,9 +205,9 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///     `extremity_hypothesis_tolerance` (0.5) more than the descriptor-based maps, the one of
 ///     lowest SHOT disagreement (radius `shot_radius`) plus `extremity_hypothesis_distortion_weight`
 ///     (2) times its sample distortion is kept (see try_extremity_hypotheses()); types `int` and
-///     `double`; defaults 2 and 0.1 (the best assignment and the next, usually its mirror twin;
-///     each hypothesis costs about one initialisation, and with `Parallel_tag` they run
-///     concurrently).
+///     `double`; defaults 3 and 0.1 (the best assignments are mostly the true one, its mirror
+///     twin and assignments with one pair of limbs swapped; each hypothesis pass uses the two fits
+///     of the repair passes, and with `Parallel_tag` they run concurrently).
 ///   - `compare_with_automatic_maps`: repair_torn_maps() only (ignored here): whether the repaired
 ///     given maps compete with the automatic maps; type `bool`; default true.
 ///   - `automatic_maps_comparison_threshold`: repair_torn_maps() with the comparison and

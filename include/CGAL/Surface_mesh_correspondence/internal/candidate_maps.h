@@ -142,6 +142,8 @@ struct Initialization_pass_data
   /// ZoomOut features: the weighted distance fields of the anchor landmarks (see
   /// prepare_landmark_distances()).
   Eigen::MatrixXd distances1, distances2;
+  /// The chirality columns among them (see prepare_landmark_distances()).
+  Eigen::Index chirality_begin = 0, chirality_count = 0;
   Zoomout_settings select_settings;      ///< the short ZoomOut to the selection size
 };
 
@@ -323,6 +325,32 @@ Eigen::MatrixXd landmark_distance_fields(const Fast_marching_geometry& g, const 
   return F;
 }
 
+/// The chirality features of landmarks on `mesh`: from the distance fields `fields` (n x L, column
+/// l the geodesic distance to landmark l divided by the square root of the area), one column per
+/// pair l < l' (in the order (0, 1), (0, 2), ..., (1, 2), ...): at each vertex the turn from the
+/// direction away from landmark l to the direction away from landmark l', seen from the normal,
+/// <n, grad d_l x grad d_l'> = the sine of the angle between them (gradient_cross_products(),
+/// on the mesh scaled to unit area), smoothed by projection on the first `smoothing` eigenfunctions
+/// of `spectrum` (none for 0), times `weight` / sqrt(number of pairs). The distance fields keep
+/// the mirror image of a part about a plane of symmetry (a torso turned front to back, a limb
+/// about its axis); these change sign there, and correspond wherever the landmarks do.
+inline Eigen::MatrixXd landmark_chirality_fields(const Indexed_mesh& mesh, const Laplace_beltrami_spectrum& spectrum,
+                                                 const Eigen::MatrixXd& fields, int smoothing, double weight)
+{
+  std::vector<std::pair<int, int> > pairs;
+  for(int i = 0; i < int(fields.cols()); ++i)
+    for(int j = i + 1; j < int(fields.cols()); ++j) pairs.emplace_back(i, j);
+  if(pairs.empty()) return Eigen::MatrixXd(fields.rows(), 0);
+  Eigen::MatrixXd g = gradient_cross_products(mesh, fields, pairs, 1.0 / std::sqrt(spectrum.total_area()));
+  smoothing = std::min(smoothing, spectrum.number_of_eigenpairs());
+  if(smoothing > 0)
+  {
+    const Eigen::MatrixXd& phi = spectrum.eigenvectors();
+    g = phi.leftCols(smoothing) * (phi.leftCols(smoothing).transpose() * (spectrum.mass().asDiagonal() * g));
+  }
+  return g * (weight / std::sqrt(double(pairs.size())));
+}
+
 /// The ZoomOut features of the anchor landmarks (the first `anchor_landmarks` landmarks, with
 /// `landmark_distance_weight` > 0): their geodesic distance fields on both meshes, divided by the
 /// square root of the mesh area and weighted. A vertex and its image are then near in the
@@ -353,6 +381,21 @@ void prepare_landmark_distances(const Initialization_shape& shape1, const Initia
   };
   invoke_both<ConcurrencyTag>([&] { fields(shape1, p.cache->first, sources1, p.distances1); },
                               [&] { fields(shape2, p.cache->second, sources2, p.distances2); });
+  if(s.landmark_chirality_weight <= 0 || anchors < 2) return;
+  // The chirality features (scaled back from the weighted fields: their gradients are
+  // landmark_distance_weight times unit vectors), appended to the distance fields.
+  const double field_weight = s.landmark_distance_weight;
+  auto chirality = [&](const Initialization_shape& shape, Eigen::MatrixXd& fields) {
+    Eigen::MatrixXd g = landmark_chirality_fields(*shape.mesh, *shape.spectrum, fields / field_weight,
+                                                  s.signed_descriptor_smoothing, s.landmark_chirality_weight);
+    fields.conservativeResize(Eigen::NoChange, fields.cols() + g.cols());
+    fields.rightCols(g.cols()) = g;
+  };
+  invoke_both<ConcurrencyTag>([&] { chirality(shape1, p.distances1); }, [&] { chirality(shape2, p.distances2); });
+  p.chirality_begin = Eigen::Index(anchors);
+  p.chirality_count = p.distances1.cols() - p.chirality_begin;
+  // Meshes of opposite orientations: the turns of mesh 2 change sign.
+  if(p.orientation_sign < 0) p.distances2.middleCols(p.chirality_begin, p.chirality_count) *= -1.0;
 }
 
 /// The candidates: every configuration (and, with landmarks, both orientations unless
@@ -606,6 +649,7 @@ Automatic_initialization_result single_pass_initial_maps(const Initialization_sh
   {
     p.D2.middleCols(p.signed_begin, p.signed_count) *= -1.0;
     if(p.features2.cols() > 0) p.features2 = zoomout_feature_columns(p.D2, p.feature_weights);
+    p.distances2.middleCols(p.chirality_begin, p.chirality_count) *= -1.0;
   }
   result.functional_map_seconds = seconds_since(fit_start);
   if(s.verbose)

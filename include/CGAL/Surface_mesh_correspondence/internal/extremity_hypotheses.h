@@ -279,11 +279,13 @@ double shot_disagreement(const Shot_samples& from, const Indexed_mesh& to, const
 }
 
 /// One extremity hypothesis: the landmarks of `assignment` (indices into the extremities `e1` and
-/// `e2`) added to the user's, a pass with the fits of `s` in the orientation of the meshes, and its
-/// tear repair (repair_torn_maps()). Without anchors among the user's landmarks the extremities
-/// are anchors (their geodesic distance fields guide ZoomOut, see landmark_distance_fields());
-/// otherwise the user's landmarks stay the only anchors: the tips of two species' limbs and heads
-/// do not correspond exactly, and their fields would pull the maps away from the user's.
+/// `e2`) added to the user's, a pass with the fits of the repair passes
+/// (Initialization_settings::repair_candidates; those of `s` when empty) in the orientation of the
+/// meshes, and its tear repair (repair_torn_maps()). Without anchors among the user's landmarks
+/// the extremities are anchors (their geodesic distance fields guide ZoomOut, see
+/// landmark_distance_fields()); otherwise the user's landmarks stay the only anchors: the tips of
+/// two species' limbs and heads do not correspond exactly, and their fields would pull the maps
+/// away from the user's.
 template <typename ConcurrencyTag>
 void run_extremity_hypothesis(const Initialization_shape& shape1, const Initialization_shape& shape2,
                               const Initialization_settings& s, const Shape_extremities& e1,
@@ -293,6 +295,8 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 {
   Initialization_settings hypothesis = s;
   hypothesis.landmark_orientation = 1;
+  // The anchors constrain the fits as a repair pass's landmarks do: its fewer fits suffice.
+  if(!s.repair_candidates.empty()) hypothesis.candidates = s.repair_candidates;
   // The extremities are anchors only when the user's landmarks hold none.
   const bool extremities_are_anchors = std::min(s.anchor_landmarks, s.landmarks.size()) == 0;
   for(const auto& p : assignment.pairs)
@@ -321,12 +325,12 @@ void run_extremity_hypothesis(const Initialization_shape& shape1, const Initiali
 /// gorilla's long arms to the man's legs, and every fit does so; the extremities and the
 /// proportions of their distances survive the change of species. Such a swap of limbs can keep
 /// the sample distances better than the true map (the gorilla's arms are as long as the man's
-/// legs), hence the tolerance. The best two assignments are mostly an assignment and its
-/// mirror twin (left and right limbs swapped): pinned at the extremities and held to the
-/// orientation of the meshes, the twin's maps turn the body front to back, which keeps the
-/// geodesic distances about as well on a body whose front and back are alike, but not the local
-/// shape of the toes, the heels and the face; and its limbs twist between the extremities and the
-/// trunk.
+/// legs), hence the tolerance. The best assignments are mostly the true one, its mirror twin (left
+/// and right limbs swapped) and those with one pair of limbs swapped, in some order: pinned at the
+/// extremities and held to the orientation of the meshes (by the chirality features of the
+/// anchors, see landmark_chirality_fields()), the twin's maps turn the body front to back, which
+/// keeps the geodesic distances about as well on a body whose front and back are alike, but not
+/// the local shape of the toes, the heels and the face; the others twist the body at the waist.
 ///
 /// Returns whether the hypotheses ran (the distortion was above the threshold). `repaired` says
 /// whether the given maps come out of the tear repair, whose result then holds the torn fraction
@@ -421,12 +425,11 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
   }
   // Among them, the one whose maps keep the local shape and the distances best: a hypothesis and
   // its mirror twin (the left and right limbs swapped, which the orientation turns into a map from
-  // front to back) keep the proportions alike, but not the SHOT descriptors, and the twin's limbs,
-  // held to the orientation, twist between the extremities and the trunk, which distorts the
-  // samples a little more. The SHOT disagreement plus extremity_hypothesis_distortion_weight times
-  // the sample distortion decides. The maps are compared at their final size (unless `grow` is
-  // false), where they follow the shapes more closely: the growth of the kept maps then has
-  // nothing left to do.
+  // front to back) keep the proportions alike, but not the SHOT descriptors; a hypothesis with one
+  // pair of limbs swapped twists the body, which mostly distorts the samples more. The SHOT
+  // disagreement plus extremity_hypothesis_distortion_weight times the sample distortion decides.
+  // The maps are compared at their final size (unless `grow` is false), where they follow the
+  // shapes more closely: the growth of the kept maps then has nothing left to do.
   std::vector<double> disagreements(assignments.size(), std::numeric_limits<double>::quiet_NaN());
   auto criterion = [&](std::size_t h) {
     return disagreements[h] + s.extremity_hypothesis_distortion_weight * distortions[h];

@@ -104,6 +104,12 @@ struct Initialization_settings
   /// on which side of a limb: without these features ZoomOut cannot tell a limb from its mirror
   /// image about its axis.
   double landmark_orientation_weight = matching_defaults().landmark_orientation_weight;
+  /// Weight of the chirality features of the anchor landmarks appended to the ZoomOut embeddings
+  /// of a pass with two or more anchors (0: none; see landmark_chirality_fields()). The distance
+  /// fields tell how far a vertex is from each anchor, not on which side of the body it lies: a
+  /// torso turned front to back keeps them. The turn from the direction to one anchor to the
+  /// direction to another, seen from the outside, changes sign there.
+  double landmark_chirality_weight = matching_defaults().landmark_chirality_weight;
   /// The anchor landmarks, whose distance fields are ZoomOut features: the first
   /// min(anchor_landmarks, landmarks.size()) landmarks. All given landmarks by default; those
   /// added by add_landmark() are not anchors.
@@ -253,6 +259,7 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.tear_repair_landmarks = m.number_of_tear_repair_landmarks;
   s.landmark_distance_weight = m.landmark_distance_weight;
   s.landmark_orientation_weight = m.landmark_orientation_weight;
+  s.landmark_chirality_weight = m.landmark_chirality_weight;
   s.extremity_hypothesis_distortion_weight = m.extremity_hypothesis_distortion_weight;
   s.shot_radius = m.shot_radius;
   s.automatic_maps_comparison_threshold = m.automatic_maps_comparison_threshold;
@@ -366,6 +373,7 @@ inline void check_initialization_settings(const Initialization_settings& s)
   if(s.tear_repair_landmarks < 1) fail("tear_repair_landmarks must be positive");
   finite_non_negative("landmark_distance_weight", s.landmark_distance_weight);
   finite_non_negative("landmark_orientation_weight", s.landmark_orientation_weight);
+  finite_non_negative("landmark_chirality_weight", s.landmark_chirality_weight);
   finite_non_negative("extremity_hypothesis_distortion_weight", s.extremity_hypothesis_distortion_weight);
 }
 

@@ -96,7 +96,7 @@
   X(number_of_distortion_repair_passes, int, 0, 0, range_between(0, 100), initialization,                          \
     "distortion repair passes at most: maps recomputed with landmarks from their isometric core, kept when they "  \
     "distort the sample distances less (0: none)")                                                                 \
-  X(extremity_hypotheses, int, 2, 2, range_between(0, 100), initialization,                                       \
+  X(extremity_hypotheses, int, 3, 3, range_between(0, 100), initialization,                                       \
     "maps that distort the sample distances more than extremity_hypothesis_threshold: passes run from this many "  \
     "assignments of the shapes' extremities as landmarks, the one whose maps best keep the SHOT descriptors "      \
     "and the sample distances kept (0: none)")                                                                     \
@@ -124,6 +124,10 @@
   X(landmark_orientation_weight, double, 3.0, 3.0, range_at_least(0), initialization,                            \
     "passes with anchor landmarks: weight of the orientation-sensitive descriptors appended to the ZoomOut "      \
     "embeddings (0: none)")                                                                                        \
+  X(landmark_chirality_weight, double, 10.0, 10.0, range_at_least(0), initialization,                            \
+    "passes with two or more anchor landmarks: weight of the turn between the directions to each two anchors "   \
+    "(the sine of the angle between the gradients of their distances) appended to the ZoomOut embeddings (0: "   \
+    "none)")                                                                                                       \
   /* ------------------------------------------------ given maps */                                                \
   X(repair_given_maps, bool, true, true, range_any(), repair,                                                      \
     "given maps: repair their tears (swapped limbs) with landmarks from their core before the refinement")         \
