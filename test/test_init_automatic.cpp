@@ -130,6 +130,40 @@ const Pair_fixture& symmetric()
   return f;
 }
 
+/// The creature and another species: arms longer than the legs, a big head and almost no tail.
+const Pair_fixture& another_species()
+{
+  static const std::vector<Limb> other = creature_limbs(0.5, 0.45, 1.1, 1.0, 0.6, 0.1);
+  static const Pair_fixture f(creature(3, false), [](const Point& p) { return on_creature(other, p); });
+  return f;
+}
+
+/// The extremities of mesh 1 of `f` (shape_extremities()) with their ground-truth matches.
+std::vector<std::pair<std::size_t, std::size_t> > true_extremity_landmarks(const Pair_fixture& f)
+{
+  namespace smci = smc::internal;
+  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1);
+  const smci::Shape_extremities e =
+      smci::shape_extremities(m1, smci::Fast_marching_geometry(m1), smci::farthest_samples(m1, 32), 0.15, 8);
+  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
+  for(int v : e.vertices) landmarks.emplace_back(std::size_t(v), f.pair.gt_12[std::size_t(v)]);
+  return landmarks;
+}
+
+/// automatic_initial_maps() on `f` from `landmarks` without the extremity hypotheses, the
+/// settings `changes` changed.
+smc::Automatic_initialization_result maps_from_landmarks(
+    const Pair_fixture& f, const std::vector<std::pair<std::size_t, std::size_t> >& landmarks,
+    std::initializer_list<std::pair<const char*, double> > changes, std::vector<std::size_t>& m12,
+    std::vector<std::size_t>& m21)
+{
+  smc::Matching_settings settings;
+  settings.set("extremity_hypotheses", 0.0);
+  for(const auto& c : changes) settings.set(c.first, c.second);
+  return smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
+                                     params::landmarks(landmarks, params::matching_settings(settings)));
+}
+
 } // namespace
 
 BOOST_AUTO_TEST_SUITE(functional_maps)
@@ -1595,20 +1629,16 @@ BOOST_AUTO_TEST_CASE(landmark_distances_keep_the_limbs_of_another_species)
   // (landmark_distance_weight) keep every vertex about as far from each landmark as its image,
   // which the descriptor fits and the pinned landmark rows alone do less well.
   namespace smci = smc::internal;
-  // Arms longer than the legs, a big head and almost no tail.
-  const std::vector<Limb> other = creature_limbs(0.5, 0.45, 1.1, 1.0, 0.6, 0.1);
-  const Pair_fixture f(creature(3, false), [other](const Point& p) { return on_creature(other, p); });
+  const Pair_fixture& f = another_species();
   const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1), m2 = smci::make_indexed_mesh(f.pair.m2);
   const smci::Fast_marching_geometry g1(m1), g2(m2);
-  const smci::Shape_extremities e = smci::shape_extremities(m1, g1, smci::farthest_samples(m1, 32), 0.15, 8);
-  BOOST_TEST_REQUIRE(e.vertices.size() == 6u);
-  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
+  const std::vector<std::pair<std::size_t, std::size_t> > landmarks = true_extremity_landmarks(f);
+  BOOST_TEST_REQUIRE(landmarks.size() == 6u);
   std::vector<int> sources1, sources2;
-  for(int v : e.vertices)
+  for(const auto& l : landmarks)
   {
-    landmarks.emplace_back(std::size_t(v), f.pair.gt_12[std::size_t(v)]);
-    sources1.push_back(v);
-    sources2.push_back(int(f.pair.gt_12[std::size_t(v)]));
+    sources1.push_back(int(l.first));
+    sources2.push_back(int(l.second));
   }
   // The mean difference of the landmark distances of the vertices of mesh 1 and of their images.
   const Eigen::MatrixXd D1 =
@@ -1622,13 +1652,12 @@ BOOST_AUTO_TEST_CASE(landmark_distances_keep_the_limbs_of_another_species)
     return sum / double(m12.size());
   };
   auto run = [&](double weight, std::vector<std::size_t>& m12, std::vector<std::size_t>& m21) {
-    smc::Matching_settings settings;
-    settings.set("extremity_hypotheses", 0.0);
-    settings.set("landmark_orientation_weight", 0.0);  // the distances alone
-    settings.set("landmark_chirality_weight", 0.0);
-    settings.set("landmark_distance_weight", weight);
-    smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
-                                params::landmarks(landmarks, params::matching_settings(settings)));
+    // The distances alone.
+    maps_from_landmarks(f, landmarks,
+                        {{"landmark_orientation_weight", 0.0},
+                         {"landmark_chirality_weight", 0.0},
+                         {"landmark_distance_weight", weight}},
+                        m12, m21);
   };
   std::vector<std::size_t> a12, a21, d12, d21;
   run(0.0, a12, a21);
@@ -1703,20 +1732,11 @@ BOOST_AUTO_TEST_CASE(orientation_features_join_the_anchored_passes)
 
   // On a creature and another species, from the true extremities (which the features are not
   // needed for: the orientation already holds), the maps keep their orientation and accuracy.
-  const std::vector<Limb> other = creature_limbs(0.5, 0.45, 1.1, 1.0, 0.6, 0.1);
-  const Pair_fixture f(creature(3, false), [other](const Point& p) { return on_creature(other, p); });
-  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1);
-  const smci::Fast_marching_geometry g1(m1);
-  const smci::Shape_extremities e = smci::shape_extremities(m1, g1, smci::farthest_samples(m1, 32), 0.15, 8);
-  BOOST_TEST_REQUIRE(e.vertices.size() == 6u);
-  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
-  for(int v : e.vertices) landmarks.emplace_back(std::size_t(v), f.pair.gt_12[std::size_t(v)]);
+  const Pair_fixture& f = another_species();
+  const std::vector<std::pair<std::size_t, std::size_t> > landmarks = true_extremity_landmarks(f);
+  BOOST_TEST_REQUIRE(landmarks.size() == 6u);
   auto run = [&](double weight, std::vector<std::size_t>& m12, std::vector<std::size_t>& m21) {
-    smc::Matching_settings settings;
-    settings.set("extremity_hypotheses", 0.0);
-    settings.set("landmark_orientation_weight", weight);
-    return smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
-                                       params::landmarks(landmarks, params::matching_settings(settings)));
+    return maps_from_landmarks(f, landmarks, {{"landmark_orientation_weight", weight}}, m12, m21);
   };
   std::vector<std::size_t> a12, a21, o12, o21;
   const smc::Automatic_initialization_result without = run(0.0, a12, a21);
@@ -1749,20 +1769,11 @@ BOOST_AUTO_TEST_CASE(chirality_features_keep_the_sides_of_another_species)
   // two sides of the body and of each limb apart where the distances to the anchors cannot, so
   // both maps are more accurate with them than without (everything else at its default).
   namespace smci = smc::internal;
-  const std::vector<Limb> other = creature_limbs(0.5, 0.45, 1.1, 1.0, 0.6, 0.1);
-  const Pair_fixture f(creature(3, false), [other](const Point& p) { return on_creature(other, p); });
-  const smci::Indexed_mesh m1 = smci::make_indexed_mesh(f.pair.m1);
-  const smci::Fast_marching_geometry g1(m1);
-  const smci::Shape_extremities e = smci::shape_extremities(m1, g1, smci::farthest_samples(m1, 32), 0.15, 8);
-  BOOST_TEST_REQUIRE(e.vertices.size() == 6u);
-  std::vector<std::pair<std::size_t, std::size_t> > landmarks;
-  for(int v : e.vertices) landmarks.emplace_back(std::size_t(v), f.pair.gt_12[std::size_t(v)]);
+  const Pair_fixture& f = another_species();
+  const std::vector<std::pair<std::size_t, std::size_t> > landmarks = true_extremity_landmarks(f);
+  BOOST_TEST_REQUIRE(landmarks.size() == 6u);
   auto run = [&](double weight, std::vector<std::size_t>& m12, std::vector<std::size_t>& m21) {
-    smc::Matching_settings settings;
-    settings.set("extremity_hypotheses", 0.0);
-    settings.set("landmark_chirality_weight", weight);
-    return smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21,
-                                       params::landmarks(landmarks, params::matching_settings(settings)));
+    return maps_from_landmarks(f, landmarks, {{"landmark_chirality_weight", weight}}, m12, m21);
   };
   std::vector<std::size_t> a12, a21, c12, c21;
   run(0.0, a12, a21);
