@@ -341,14 +341,8 @@ inline Eigen::MatrixXd landmark_chirality_fields(const Indexed_mesh& mesh, const
   for(int i = 0; i < int(fields.cols()); ++i)
     for(int j = i + 1; j < int(fields.cols()); ++j) pairs.emplace_back(i, j);
   if(pairs.empty()) return Eigen::MatrixXd(fields.rows(), 0);
-  Eigen::MatrixXd g = gradient_cross_products(mesh, fields, pairs, 1.0 / std::sqrt(spectrum.total_area()));
-  smoothing = std::min(smoothing, spectrum.number_of_eigenpairs());
-  if(smoothing > 0)
-  {
-    const Eigen::MatrixXd& phi = spectrum.eigenvectors();
-    g = phi.leftCols(smoothing) * (phi.leftCols(smoothing).transpose() * (spectrum.mass().asDiagonal() * g));
-  }
-  return g * (weight / std::sqrt(double(pairs.size())));
+  const Eigen::MatrixXd g = gradient_cross_products(mesh, fields, pairs, 1.0 / std::sqrt(spectrum.total_area()));
+  return smooth_on_eigenfunctions(spectrum, g, smoothing) * (weight / std::sqrt(double(pairs.size())));
 }
 
 /// The ZoomOut features of the anchor landmarks (the first `anchor_landmarks` landmarks, with

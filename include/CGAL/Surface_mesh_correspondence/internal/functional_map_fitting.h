@@ -30,6 +30,18 @@ namespace CGAL {
 namespace Surface_mesh_correspondence {
 namespace internal {
 
+/// `functions` (one per column) projected on the first `smoothing` eigenfunctions of `spectrum`
+/// (at most all of them; unchanged for 0): the smoothing of the orientation-sensitive descriptors
+/// and of the landmarks' chirality features.
+inline Eigen::MatrixXd smooth_on_eigenfunctions(const Laplace_beltrami_spectrum& spectrum, Eigen::MatrixXd functions,
+                                                int smoothing)
+{
+  smoothing = std::min(smoothing, spectrum.number_of_eigenpairs());
+  if(smoothing <= 0) return functions;
+  const Eigen::MatrixXd& phi = spectrum.eigenvectors();
+  return phi.leftCols(smoothing) * (phi.leftCols(smoothing).transpose() * (spectrum.mass().asDiagonal() * functions));
+}
+
 /// The descriptors of one shape used by the initialisation, n x d (see
 /// Initialization_descriptor_layout): WKS columns (if wks_weight > 0), HKS columns (if
 /// hks_weight > 0), then orientation-sensitive columns <n, grad f x grad g> for pairs of them,
@@ -53,14 +65,10 @@ Eigen::MatrixXd initialization_descriptors(const Indexed_mesh& mesh, const Lapla
         spectrum, parameters::number_of_hks_scales(l.hks, parameters::number_of_eigenpairs(k)));
   if(!l.signed_pairs.empty())
   {
-    Eigen::MatrixXd g = gradient_cross_products(mesh, out.leftCols(l.plain()), l.signed_pairs,
-                                                1.0 / std::sqrt(spectrum.total_area()));
-    const int smoothing = std::min(s.signed_descriptor_smoothing, spectrum.number_of_eigenpairs());
-    if(smoothing > 0)
-    {
-      const Eigen::MatrixXd& phi = spectrum.eigenvectors();
-      g = phi.leftCols(smoothing) * (phi.leftCols(smoothing).transpose() * (spectrum.mass().asDiagonal() * g));
-    }
+    const Eigen::MatrixXd g = smooth_on_eigenfunctions(
+        spectrum,
+        gradient_cross_products(mesh, out.leftCols(l.plain()), l.signed_pairs, 1.0 / std::sqrt(spectrum.total_area())),
+        s.signed_descriptor_smoothing);
     out.rightCols(g.cols()) = g;
   }
   return out;
