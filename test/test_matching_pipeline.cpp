@@ -1851,38 +1851,67 @@ BOOST_AUTO_TEST_CASE(a_mirror_map_reverses_every_triangle)
   BOOST_TEST(mirror.whole.inconsistent_fraction == 0.0);
   BOOST_TEST(mirror.whole.distortion < 1e-6);
   BOOST_TEST(mirror.whole.global_distortion < 1e-6);
-  // The confidence sees the mirror.
+  // The confidence sees the mirror: every far triple reversed, no distortion.
   smc::Matching_diagnostics d;
   d.after = {{mirror, same}};
   const smc::Matching_confidence c = smc::internal::matching_confidence(d, 0.5);
   BOOST_TEST(c.low);
-  BOOST_TEST(c.score == 0.0);
+  BOOST_TEST(c.score == 1 - 1 / (2 * smc::Matching_confidence::orientation_reversal_scale), tt::tolerance(1e-12));
   BOOST_TEST(c.direction_scores[1] == 1.0);
+  // The far triples: each sample with each two of its four nearest samples (brute force over the
+  // samples' distances).
+  BOOST_TEST_REQUIRE(layout.sample_neighbors.size() == layout.samples.size());
+  for(std::size_t k = 0; k < layout.samples.size(); ++k)
+  {
+    const int a = layout.samples[k];
+    const std::vector<int>& nearest = layout.sample_neighbors[k];
+    BOOST_TEST_REQUIRE(nearest.size() == std::size_t(smc::internal::Diagnostics_layout::orientation_neighbors));
+    const double farthest_kept = layout.sample_distances.distance(a, nearest.back());
+    for(std::size_t i = 0; i + 1 < nearest.size(); ++i)
+      BOOST_TEST(layout.sample_distances.distance(a, nearest[i]) <= layout.sample_distances.distance(a, nearest[i + 1]));
+    for(int b : layout.samples)
+      if(b != a && std::find(nearest.begin(), nearest.end(), b) == nearest.end())
+        BOOST_TEST(layout.sample_distances.distance(a, b) >= farthest_kept);
+    BOOST_TEST((std::find(nearest.begin(), nearest.end(), a) == nearest.end()));
+  }
 }
 
-BOOST_AUTO_TEST_CASE(confidence_is_the_lowest_score_of_orientation_and_far_distances)
+BOOST_AUTO_TEST_CASE(confidence_weighs_orientation_and_far_distances_together)
 {
-  // Analytic cases: a map's score is min(1 - far reversal / 0.5, 1 - global distortion / 0.5),
+  // Analytic cases: a map's score is 1 - (far reversal / 0.6 + global distortion / 0.18) / 2,
   // clamped to [0, 1]; the confidence is the lower direction's, low below the threshold. The
   // reversal of small triangles (local noise) does not count.
+  BOOST_TEST(smc::Matching_confidence::orientation_reversal_scale == 0.6);
+  BOOST_TEST(smc::Matching_confidence::global_distortion_scale == 0.18);
   smc::Matching_diagnostics d;
-  d.after[0].whole.global_orientation_reversal = 0.1;   // 0.8
-  d.after[0].whole.global_distortion = 0.02;            // 0.96
+  d.after[0].whole.global_orientation_reversal = 0.1;   // 1 - (1/6 + 1/9) / 2
+  d.after[0].whole.global_distortion = 0.02;
   d.after[0].whole.orientation_reversal = 0.45;
-  d.after[1].whole.global_orientation_reversal = 0.01;  // 0.98
-  d.after[1].whole.global_distortion = 0.225;           // 0.55
+  d.after[1].whole.global_orientation_reversal = 0.03;  // 1 - (0.05 + 0.5) / 2
+  d.after[1].whole.global_distortion = 0.09;
   smc::Matching_confidence c = smc::internal::matching_confidence(d, 0.5);
-  BOOST_TEST(c.direction_scores[0] == 0.8, tt::tolerance(1e-12));
-  BOOST_TEST(c.direction_scores[1] == 0.55, tt::tolerance(1e-12));
-  BOOST_TEST(c.score == 0.55, tt::tolerance(1e-12));
+  BOOST_TEST(c.direction_scores[0] == 1 - (1.0 / 6 + 1.0 / 9) / 2, tt::tolerance(1e-12));
+  BOOST_TEST(c.direction_scores[1] == 0.725, tt::tolerance(1e-12));
+  BOOST_TEST(c.score == 0.725, tt::tolerance(1e-12));
   BOOST_TEST(!c.low);
-  BOOST_TEST(c.reason == "map 2->1: global distortion 0.225");
-  BOOST_TEST(smc::internal::matching_confidence(d, 0.6).low);
-  d.after[0].whole.global_orientation_reversal = 0.9;  // a mirror map: 0, not negative
+  BOOST_TEST(c.reason == "map 2->1: orientation reversal 0.030, global distortion 0.090");
+  BOOST_TEST(smc::internal::matching_confidence(d, 0.73).low);
+  // Either measure at its scale alone, or half of each, gives 0.5: the evidence adds up.
+  for(const std::pair<double, double>& x : {std::make_pair(0.6, 0.0), std::make_pair(0.0, 0.18), std::make_pair(0.3, 0.09)})
+  {
+    d.after[1].whole.global_orientation_reversal = x.first;
+    d.after[1].whole.global_distortion = x.second;
+    BOOST_TEST(smc::internal::matching_confidence(d, 0.5).score == 0.5, tt::tolerance(1e-12));
+  }
+  // Half of each but a little more of the orientation: low.
+  d.after[1].whole.global_orientation_reversal = 0.31;
+  BOOST_TEST(smc::internal::matching_confidence(d, 0.5).low);
+  d.after[0].whole.global_orientation_reversal = 0.9;  // a mirror map far distorted: 0, not negative
+  d.after[0].whole.global_distortion = 0.2;
   c = smc::internal::matching_confidence(d, 0.5);
   BOOST_TEST(c.score == 0.0);
   BOOST_TEST(c.low);
-  BOOST_TEST(c.reason == "map 1->2: orientation reversal 0.900");
+  BOOST_TEST(c.reason == "map 1->2: orientation reversal 0.900, global distortion 0.200");
   d.after[0].whole.global_orientation_reversal = 0;
   d.after[0].whole.global_distortion = 0;
   d.after[1] = d.after[0];

@@ -69,11 +69,11 @@ struct Map_diagnostics
   /// those whose first corner is in the region.
   double orientation_reversal = 0;
   /// The same at the scale of the far apart samples (those of `global_distortion`): for each
-  /// sample a and its two nearest samples b, c, whether the turn from b to c around a (seen from
-  /// the normal at a, in the tangent plane) and the turn between their images (seen from the
-  /// target's normal at the image of a) have opposite signs; triples without a clear turn on
-  /// either side are left out. Local noise of the map, which reverses small triangles at random,
-  /// does not reverse these; a mirror map does.
+  /// sample a and each two b, c of its four nearest samples, whether the turn from b to c around a
+  /// (seen from the normal at a, in the tangent plane) and the turn between their images (seen
+  /// from the target's normal at the image of a) have opposite signs; triples without a clear
+  /// turn on either side are left out. Local noise of the map, which reverses small triangles at
+  /// random, does not reverse these; a mirror map does.
   double global_orientation_reversal = 0;
   /// The refinement's MRF energy per vertex: mu |F_S(i) - F_T(x(i))|^2 + lambda d_S(i, y(x(i)))
   /// plus half the sum over the mesh edges (i, j) of |d_S(i, j) - d_T(x(i), x(j))|, with the mu
@@ -115,24 +115,29 @@ struct Matching_diagnostics
 /// or distort the distances between far apart points (see Map_diagnostics).
 struct Matching_confidence
 {
-  /// In [0, 1]: the lower of the two directions' scores. The score of a map is the lower of
-  /// 1 - global_orientation_reversal / `orientation_reversal_limit` and 1 - global_distortion /
-  /// `global_distortion_limit` (each clamped to [0, 1]): 1 for a map that keeps the orientation
-  /// and the far distances, 0 for a mirror map, a scrambled one, or one that changes far
-  /// distances by half the square root of the area on average.
+  /// In [0, 1]: the lower of the two directions' scores. The score of a map is
+  /// 1 - (global_orientation_reversal / `orientation_reversal_scale` + global_distortion /
+  /// `global_distortion_scale`) / 2, clamped to [0, 1]: 1 for a map that keeps the orientation
+  /// and the far distances, 0.5 for a map that reverses `orientation_reversal_scale` of the far
+  /// triples or distorts the far distances by `global_distortion_scale` (or a sum of parts of
+  /// both), about 0.17 for a mirror map and 0 for a scrambled one. Both measures are noisy on
+  /// good maps between different species (a sample whose neighbour's image lands far away turns
+  /// at random), so each weighs the evidence of the other rather than deciding alone.
   double score = 1;
   /// The score of the map 1 -> 2 and of the map 2 -> 1.
   std::array<double, 2> direction_scores{{1, 1}};
   /// Whether `score` is below `confidence_threshold`: the maps are probably wrong as a whole.
   bool low = false;
-  /// The diagnostic that set the score, e.g. "map 1->2: orientation reversal 0.450" (of the
-  /// far apart samples).
+  /// The measures of the direction that set the score, e.g. "map 1->2: orientation reversal
+  /// 0.450, global distortion 0.080" (of the far apart samples).
   std::string reason;
 
-  /// The distortion of far distances at which a map's score reaches 0.
-  static constexpr double global_distortion_limit = 0.5;
-  /// The orientation reversal at which a map's score reaches 0 (a scrambled map's).
-  static constexpr double orientation_reversal_limit = 0.5;
+  /// The global distortion that alone makes a map's score 0.5. Calibrated with
+  /// `orientation_reversal_scale` on the maps of the TOSCA_nonIso, FAUST_r and TOSCA_r benchmark
+  /// subsets (see doc/coupled_refinement.md).
+  static constexpr double global_distortion_scale = 0.18;
+  /// The far orientation reversal that alone makes a map's score 0.5.
+  static constexpr double orientation_reversal_scale = 0.6;
 };
 
 namespace internal {
@@ -158,10 +163,9 @@ inline Matching_confidence matching_confidence(const Matching_diagnostics& d, do
   for(int direction = 0; direction < 2; ++direction)
   {
     const Map_diagnostics& m = d.after[std::size_t(direction)].whole;
-    const double orientation =
-        clamp01(1 - m.global_orientation_reversal / Matching_confidence::orientation_reversal_limit);
-    const double far = clamp01(1 - m.global_distortion / Matching_confidence::global_distortion_limit);
-    const double score = std::min(orientation, far);
+    const double evidence = m.global_orientation_reversal / Matching_confidence::orientation_reversal_scale +
+                            m.global_distortion / Matching_confidence::global_distortion_scale;
+    const double score = clamp01(1 - evidence / 2);
     c.direction_scores[std::size_t(direction)] = score;
     if(direction == 0 || score < c.score)
     {
@@ -169,11 +173,8 @@ inline Matching_confidence matching_confidence(const Matching_diagnostics& d, do
       std::ostringstream why;
       why.setf(std::ios::fixed);
       why.precision(3);
-      why << (direction == 0 ? "map 1->2: " : "map 2->1: ");
-      if(orientation <= far)
-        why << "orientation reversal " << m.global_orientation_reversal;
-      else
-        why << "global distortion " << m.global_distortion;
+      why << (direction == 0 ? "map 1->2: " : "map 2->1: ") << "orientation reversal "
+          << m.global_orientation_reversal << ", global distortion " << m.global_distortion;
       c.reason = why.str();
     }
   }
@@ -243,11 +244,15 @@ struct Diagnostics_settings
 struct Diagnostics_layout
 {
   static constexpr int global_samples = 64;
+  /// The nearest samples of each sample whose turns `global_orientation_reversal` compares.
+  static constexpr int orientation_neighbors = 4;
   std::vector<int> regions, centers, scored;
   int number_of_regions = 0;  ///< 0: the whole mesh only
   std::vector<int> samples;   ///< the first `global_samples` farthest point samples
   Vertex_set_distances sample_distances;  ///< between them, over the square root of the area
-  std::vector<std::array<int, 2> > sample_neighbors;  ///< the two samples nearest to each sample
+  /// The `orientation_neighbors` samples nearest to each sample, nearest first (fewer when there
+  /// are fewer samples).
+  std::vector<std::vector<int> > sample_neighbors;
 
   template <typename ConcurrencyTag>
   Diagnostics_layout(const Indexed_mesh& m, const Fast_marching_geometry& g, int count, ConcurrencyTag)
@@ -259,26 +264,15 @@ struct Diagnostics_layout
     sample_distances.compute<ConcurrencyTag>(g, samples, std::sqrt(m.total_area));
     for(int a : samples)
     {
-      std::array<int, 2> nearest{{-1, -1}};
-      double d0 = std::numeric_limits<double>::infinity(), d1 = d0;
+      std::vector<std::pair<double, int> > others;  // (distance, sample), in the samples' order
       for(int b : samples)
-      {
-        if(b == a) continue;
-        const double d = sample_distances.distance(a, b);
-        if(d < d0)
-        {
-          d1 = d0;
-          nearest[1] = nearest[0];
-          d0 = d;
-          nearest[0] = b;
-        }
-        else if(d < d1)
-        {
-          d1 = d;
-          nearest[1] = b;
-        }
-      }
-      sample_neighbors.push_back(nearest);
+        if(b != a) others.emplace_back(sample_distances.distance(a, b), b);
+      const std::size_t k = std::min(others.size(), std::size_t(orientation_neighbors));
+      std::stable_sort(others.begin(), others.end(),
+                       [](const std::pair<double, int>& x, const std::pair<double, int>& y) { return x.first < y.first; });
+      std::vector<int> nearest;
+      for(std::size_t i = 0; i < k; ++i) nearest.push_back(others[i].second);
+      sample_neighbors.push_back(std::move(nearest));
     }
     const int stride = std::max(1, n / 1000);
     for(int v = 0; v < n; v += stride) scored.push_back(v);
@@ -347,32 +341,39 @@ Direction_diagnostics direction_diagnostics(const Shape_data& S, const Fast_marc
       reversed_total += area;
     }
   }
-  // Orientation at the samples' scale: each sample with its two nearest samples.
+  // Orientation at the samples' scale: each sample with each two of its nearest samples.
   const Indexed_mesh::Points source_normals = vertex_normals(S.mesh);
   std::vector<double> far_reversed(reversed_area.size(), 0.0), far_counted(reversed_area.size(), 0.0);
   double far_reversed_total = 0, far_counted_total = 0;
   for(std::size_t k = 0; k < layout.samples.size(); ++k)
   {
-    const int a = layout.samples[k], b = layout.sample_neighbors[k][0], c = layout.sample_neighbors[k][1];
-    if(b < 0 || c < 0) continue;
-    const int xa = x[std::size_t(a)], xb = x[std::size_t(b)], xc = x[std::size_t(c)];
-    if(xa == xb || xb == xc || xa == xc) continue;
-    // The turn from b to c seen from the normal at a, on each side; triples whose turn is not
-    // clear on both (b and c nearly in line with a, or off the tangent plane, as around a limb)
-    // are left out.
-    double turn_s, turn_t;
-    if(!tangent_turn(S.mesh.point(a), S.mesh.point(b), S.mesh.point(c), source_normals.row(a).transpose(), turn_s) ||
-       !tangent_turn(T.mesh.point(xa), T.mesh.point(xb), T.mesh.point(xc), target_normals.row(xa).transpose(), turn_t))
-      continue;
-    const bool reversed = (turn_s > 0) != (turn_t > 0);
-    const std::size_t r = layout.number_of_regions > 0 ? std::size_t(layout.regions[std::size_t(a)]) : 0;
-    far_counted[r] += 1;
-    far_counted_total += 1;
-    if(reversed)
-    {
-      far_reversed[r] += 1;
-      far_reversed_total += 1;
-    }
+    const int a = layout.samples[k];
+    const std::vector<int>& nearest = layout.sample_neighbors[k];
+    for(std::size_t i = 0; i < nearest.size(); ++i)
+      for(std::size_t j = i + 1; j < nearest.size(); ++j)
+      {
+        const int b = nearest[i], c = nearest[j];
+        const int xa = x[std::size_t(a)], xb = x[std::size_t(b)], xc = x[std::size_t(c)];
+        if(xa == xb || xb == xc || xa == xc) continue;
+        // The turn from b to c seen from the normal at a, on each side; triples whose turn is not
+        // clear on both (b and c nearly in line with a or on opposite sides of it, or off the
+        // tangent plane, as around a limb) are left out.
+        double turn_s, turn_t;
+        if(!tangent_turn(S.mesh.point(a), S.mesh.point(b), S.mesh.point(c), source_normals.row(a).transpose(),
+                         turn_s) ||
+           !tangent_turn(T.mesh.point(xa), T.mesh.point(xb), T.mesh.point(xc), target_normals.row(xa).transpose(),
+                         turn_t))
+          continue;
+        const bool reversed = (turn_s > 0) != (turn_t > 0);
+        const std::size_t r = layout.number_of_regions > 0 ? std::size_t(layout.regions[std::size_t(a)]) : 0;
+        far_counted[r] += 1;
+        far_counted_total += 1;
+        if(reversed)
+        {
+          far_reversed[r] += 1;
+          far_reversed_total += 1;
+        }
+      }
   }
   // Global distortion: the samples' distances against their images'.
   std::vector<int> images;
