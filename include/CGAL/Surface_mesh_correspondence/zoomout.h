@@ -266,22 +266,36 @@ void coupled_zoomout_refine(const Eigen::MatrixXd& basis1, const Eigen::VectorXd
   {
     const bool last = s + 1 == sizes.size();
     const double f = features.empty() ? 0.0 : zoomout_feature_scale(settings, s, sizes.size());
-    // Per mesh, the query Phi (C + a^2 C'^T) and the data norms of the joint embedding's
-    // bijectivity part, a^2 |Phi C|^2, for both meshes concurrently.
+    // Per mesh, the query Phi (C + a^2 C'^T) (on the rows only, but in the last iteration) and
+    // the data norms of the joint embedding's bijectivity part, a^2 |Phi C|^2, for both meshes
+    // concurrently.
     Eigen::MatrixXd q1, q2;
     Nearest_neighbor_search search1, search2;
-    auto prepare = [a2, f](const Eigen::MatrixXd& basis, const Eigen::MatrixXd& C, const Eigen::MatrixXd& C_back,
-                           const Eigen::MatrixXd* own_features, Eigen::MatrixXd& query,
-                           Nearest_neighbor_search& search) {
+    auto prepare = [a2, f, last](const Eigen::MatrixXd& basis, const std::vector<int>& rows, const Eigen::MatrixXd& C,
+                                 const Eigen::MatrixXd& C_back, const Eigen::MatrixXd* own_features,
+                                 Eigen::MatrixXd& query, Nearest_neighbor_search& search) {
       const Eigen::Index k = C.rows();
       const Eigen::MatrixXd combined = C + a2 * C_back.transpose();
-      query = append_features(basis.leftCols(k) * combined, own_features, f);
+      if(last || rows.empty())
+        query = append_features(basis.leftCols(k) * combined, own_features, f);
+      else
+      {
+        const Eigen::Index m = Eigen::Index(rows.size());
+        const bool with_features = own_features && own_features->cols() > 0;
+        Eigen::MatrixXd sampled(m, k), sampled_features(m, with_features ? own_features->cols() : 0);
+        for(Eigen::Index r = 0; r < m; ++r)
+        {
+          sampled.row(r) = basis.row(rows[std::size_t(r)]).head(k);
+          if(with_features) sampled_features.row(r) = own_features->row(rows[std::size_t(r)]);
+        }
+        query = append_features(sampled * combined, &sampled_features, f);
+      }
       // The data side of this mesh (queried by the other one): [Phi, f F] with the norms of a Phi C.
       const Eigen::VectorXd extra = a2 * (basis.leftCols(k) * C).rowwise().squaredNorm();
       search.build(append_features(basis.leftCols(k), own_features, f), extra);
     };
-    invoke_both<ConcurrencyTag>([&] { prepare(basis1, C12, C21, features.source, q1, search1); },
-                                [&] { prepare(basis2, C21, C12, features.target, q2, search2); });
+    invoke_both<ConcurrencyTag>([&] { prepare(basis1, rows1, C12, C21, features.source, q1, search1); },
+                                [&] { prepare(basis2, rows2, C21, C12, features.target, q2, search2); });
     CGAL_assertion(q1.cols() == search2.dimension() && q2.cols() == search1.dimension());
     if(last)
     {

@@ -382,20 +382,22 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
   }
   // From each hypothesis, a pass with all the fits of the first one, in the orientation of the
   // meshes, and its tear repair, whose landmarks from the core of its maps pin the body between
-  // the extremities. With Parallel_tag the hypotheses run concurrently (the serial parts of one
-  // pass overlap the other's), each but the first on its own pass cache (one after the other they
-  // all use the given cache): the cached fast marching rows give the values of a new run, so the
-  // maps do not depend on it. Progress is then notified on the calling thread once all are done
-  // (step_done may throw a stop request).
+  // the extremities, then the sample distortion of its maps. With Parallel_tag the hypotheses run
+  // concurrently (the serial parts of one pass overlap the other's), each on a pass cache of its
+  // own that reads the fast marching rows of the given one, unchanged until all are done (one
+  // after the other they all use the given cache): the cached rows give the values of a new run,
+  // so the maps do not depend on it. Progress is then notified on the calling thread once all are
+  // done (step_done may throw a stop request).
   struct Hypothesis_maps
   {
     std::vector<std::size_t> map_12, map_21;
     Automatic_initialization_result result;
+    double distortion = 0;
   };
   std::vector<Hypothesis_maps> runs(assignments.size());
   const bool concurrent = Is_parallel<ConcurrencyTag>::value && assignments.size() > 1 && !s.verbose;
   std::vector<Initialization_pass_cache> caches;
-  for(std::size_t h = 1; concurrent && h < assignments.size(); ++h) caches.push_back(cache.copy_without_rows());
+  for(std::size_t h = 0; concurrent && h < assignments.size(); ++h) caches.push_back(cache.copy_sharing_rows());
   std::optional<Initialization_settings> quiet;
   if(concurrent)
   {
@@ -403,9 +405,10 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
     quiet->step_done = nullptr;
   }
   auto run = [&](std::size_t h) {
-    Initialization_pass_cache& pass_cache = h == 0 || !concurrent ? cache : caches[h - 1];
+    Initialization_pass_cache& pass_cache = concurrent ? caches[h] : cache;
     run_extremity_hypothesis<ConcurrencyTag>(shape1, shape2, quiet ? *quiet : s, e1, e2, assignments[h], pass_cache,
                                              runs[h].map_12, runs[h].map_21, runs[h].result);
+    runs[h].distortion = pair_distortion<ConcurrencyTag>(shape1, shape2, s, pass_cache, runs[h].map_12, runs[h].map_21);
   };
   if(concurrent)
   {
@@ -419,7 +422,7 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
   std::vector<std::size_t> eligible;
   for(std::size_t h = 0; h < assignments.size(); ++h)
   {
-    distortions[h] = pair_distortion<ConcurrencyTag>(shape1, shape2, s, cache, runs[h].map_12, runs[h].map_21);
+    distortions[h] = runs[h].distortion;
     if(distortions[h] <= (1 + s.extremity_hypothesis_tolerance) * distortion) eligible.push_back(h);
   }
   // Among them, the one whose maps keep the local shape and the distances best: a hypothesis and

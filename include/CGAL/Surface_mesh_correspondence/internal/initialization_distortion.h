@@ -99,15 +99,22 @@ class Fast_marching_row_cache
 public:
   explicit Fast_marching_row_cache(std::size_t budget_bytes = std::size_t(48) << 20) : budget_(budget_bytes) {}
 
-  /// The row of a run from `source`, or null.
+  /// The row of a run from `source`, or null: a row of this cache, else one of the shared cache.
   const std::vector<double>* find(int source) const
   {
     const auto it = rows_.find(source);
-    return it == rows_.end() ? nullptr : &it->second;
+    if(it != rows_.end()) return &it->second;
+    return shared_ ? shared_->find(source) : nullptr;
   }
+  /// Whether this cache itself (not the shared one) holds a row of `source`.
+  bool holds(int source) const { return rows_.count(source) > 0; }
+  /// Looks up the rows of `shared` too (null: none), which must outlive this cache and not change
+  /// while it is in use: the caches of concurrent passes each keep their new rows and share the
+  /// rows of the passes before them, read-only.
+  void share(const Fast_marching_row_cache* shared) { shared_ = shared; }
   /// Whether a new row of `n` distances fits in the budget.
   bool has_room(std::size_t n) const { return bytes_ + n * sizeof(double) <= budget_; }
-  /// Keeps `row` as the run from `source` (replacing an older row of that source).
+  /// Keeps `row` as the run from `source` (replacing an older row of that source in this cache).
   void store(int source, std::vector<double>&& row)
   {
     auto it = rows_.find(source);
@@ -126,6 +133,7 @@ public:
 private:
   std::unordered_map<int, std::vector<double> > rows_;
   std::size_t bytes_ = 0, budget_;
+  const Fast_marching_row_cache* shared_ = nullptr;
 };
 
 /// Geodesic distances between the vertices of a set (fast marching from each one, stopped when
@@ -170,7 +178,7 @@ public:
         const std::size_t i = runs[r];
         w.run(&vertices_[i], 1, std::numeric_limits<double>::infinity(), vertices_.data(), q);
         for(std::size_t j = 0; j < q; ++j) distances_(Eigen::Index(j), Eigen::Index(i)) = w.distance(vertices_[j]) / scale;
-        if(cache && (r < room || cache->find(vertices_[i]))) w.copy_distances(new_rows[r]);
+        if(cache && (r < room || cache->holds(vertices_[i]))) w.copy_distances(new_rows[r]);
       }
     });
     for(std::size_t i = 0; i < q; ++i)
@@ -263,14 +271,16 @@ struct Initialization_sampling
   /// Runs of the distortion scores, shared by all passes (see Fast_marching_row_cache).
   mutable Fast_marching_row_cache rows;
 
-  /// A copy without the cached rows (up to 48 MB per mesh), for a pass that runs concurrently
-  /// with others: the caches are not shared between threads.
-  Initialization_sampling copy_without_rows() const
+  /// A copy for a pass that runs concurrently with others: its row cache starts empty and reads
+  /// the rows of this one (Fast_marching_row_cache::share()), which must then stay as they are
+  /// until the copy is gone.
+  Initialization_sampling copy_sharing_rows() const
   {
     Initialization_sampling c;
     c.samples = samples;
     c.geodesics = geodesics;
     c.sample_distances = sample_distances;
+    c.rows.share(&rows);
     return c;
   }
 };
@@ -283,16 +293,16 @@ struct Initialization_pass_cache
   int number_of_samples = 0, distortion_count = 0;
   Initialization_sampling first, second;
 
-  /// A copy with the samplings but no cached fast marching row, for a pass that runs concurrently
-  /// with others (the row caches are not shared between threads).
-  Initialization_pass_cache copy_without_rows() const
+  /// A copy for a pass that runs concurrently with others: the samplings, and row caches of its
+  /// own that read the rows of this one (see Initialization_sampling::copy_sharing_rows()).
+  Initialization_pass_cache copy_sharing_rows() const
   {
     Initialization_pass_cache c;
     c.ready = ready;
     c.number_of_samples = number_of_samples;
     c.distortion_count = distortion_count;
-    c.first = first.copy_without_rows();
-    c.second = second.copy_without_rows();
+    c.first = first.copy_sharing_rows();
+    c.second = second.copy_sharing_rows();
     return c;
   }
 };

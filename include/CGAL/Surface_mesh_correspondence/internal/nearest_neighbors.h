@@ -85,14 +85,16 @@ public:
     const Eigen::Index m = queries.rows();
     const Eigen::Index n = points_.cols();
     if(m == 0 || n == 0) return;
-    const Matrixf q_all = queries.template cast<float>();
+    // Negated queries: the product then gives -<q, y> directly (negation is exact), without a
+    // second pass over the scores.
+    const Matrixf q_all = -queries.template cast<float>();
     const std::size_t blocks = static_cast<std::size_t>((m + query_block - 1) / query_block);
     parallel_for<ConcurrencyTag>(blocks, [&](std::size_t b) {
       const Eigen::Index begin = static_cast<Eigen::Index>(b) * query_block;
       const Eigen::Index rows = std::min(query_block, m - begin);
       // scores(j, r) = |y_j|^2 / 2 - <q_r, y_j>: one contiguous column per query.
       Matrixf scores(n, rows);
-      scores.noalias() = -(points_.transpose() * q_all.middleRows(begin, rows).transpose());
+      scores.noalias() = points_.transpose() * q_all.middleRows(begin, rows).transpose();
       for(Eigen::Index r = 0; r < rows; ++r)
       {
         auto column = scores.col(r);
