@@ -299,6 +299,81 @@ BOOST_AUTO_TEST_CASE(coupled_zoomout_finds_the_nearest_points_of_the_joint_embed
     }
 }
 
+BOOST_AUTO_TEST_CASE(coupled_zoomout_on_sample_rows_matches_brute_force)
+{
+  // Two coupled ZoomOut sizes (16 -> 20) on sample rows, with features whose weight changes from
+  // the first size to the last: the first step matches the rows only (x -> argmin_y over all y in
+  // the joint embeddings), the fit of those matches gives the final functional maps, and the last
+  // step matches every vertex. Reference: brute force in double precision with the library's fit.
+  const Mesh m1 = bumpy_capsule(16, 4, 10), m2 = transformed(bumpy_capsule(16, 4, 10), pose);
+  const smc::Laplace_beltrami_spectrum s1(m1, params::number_of_eigenpairs(25)),
+      s2(m2, params::number_of_eigenpairs(25));
+  const int k0 = 16, k = 20;
+  const Eigen::MatrixXd basis1 = smc::internal::unit_area_basis(s1, k), basis2 = smc::internal::unit_area_basis(s2, k);
+  const Eigen::VectorXd mass1 = smc::internal::unit_area_mass(s1), mass2 = smc::internal::unit_area_mass(s2);
+  Eigen::MatrixXd C12 = Eigen::MatrixXd::Identity(k0, k0), C21 = Eigen::MatrixXd::Identity(k0, k0);
+  for(int i = 0; i < k0; ++i)
+    for(int j = 0; j < k0; ++j)
+    {
+      C12(i, j) += 0.1 * std::sin(1.0 + 3 * i + 7 * j);
+      C21(i, j) += 0.1 * std::cos(2.0 + 5 * i + 2 * j);
+    }
+  const Eigen::MatrixXd F1 = basis1.middleCols(1, 3).array().square().matrix(),
+                        F2 = basis2.middleCols(1, 3).array().square().matrix();
+  std::vector<int> rows1, rows2;
+  for(int v = 0; v < basis1.rows(); v += 3) rows1.push_back(v);
+  for(int v = 1; v < basis2.rows(); v += 4) rows2.push_back(v);
+  smc::internal::Zoomout_settings zs;
+  zs.final_size = k;
+  zs.step = 4;
+  zs.bijectivity_weight = 0.5;
+  zs.feature_final_ratio = 0.5;  // features weigh 1 at the first size, 0.5 at the last
+  smc::internal::Zoomout_features features;
+  features.source = &F1;
+  features.target = &F2;
+  Eigen::MatrixXd c12 = C12, c21 = C21;
+  std::vector<int> map12, map21;
+  smc::internal::coupled_zoomout_refine<CGAL::Parallel_tag>(basis1, mass1, basis2, mass2, c12, c21, zs, rows1, rows2,
+                                                            {}, map12, map21, features);
+  // The joint embedding of a mesh as query ([Phi C, a Phi, f F]) or as data ([Phi, a Phi C', f F]).
+  const double a = std::sqrt(zs.bijectivity_weight);
+  auto joint = [&](const Eigen::MatrixXd& basis, const Eigen::MatrixXd& C, const Eigen::MatrixXd& F, double f,
+                   bool query) {
+    const Eigen::Index kk = C.rows();
+    const Eigen::MatrixXd phi = basis.leftCols(kk);
+    Eigen::MatrixXd e(basis.rows(), 2 * kk + F.cols());
+    e.leftCols(kk) = query ? Eigen::MatrixXd(phi * C) : phi;
+    e.middleCols(kk, kk) = a * (query ? phi : Eigen::MatrixXd(phi * C));
+    e.rightCols(F.cols()) = f * F;
+    return e;
+  };
+  auto nearest = [](const Eigen::MatrixXd& q, const Eigen::MatrixXd& d, Eigen::Index x) {
+    Eigen::Index best;
+    (d.rowwise() - q.row(x)).rowwise().squaredNorm().minCoeff(&best);
+    return int(best);
+  };
+  // First size (features weight 1): the matches of the rows, then the fits.
+  const Eigen::MatrixXd q1 = joint(basis1, C12, F1, 1.0, true), d2 = joint(basis2, C21, F2, 1.0, false);
+  const Eigen::MatrixXd q2 = joint(basis2, C21, F2, 1.0, true), d1 = joint(basis1, C12, F1, 1.0, false);
+  std::vector<int> rows_map12, rows_map21;
+  for(int x : rows1) rows_map12.push_back(nearest(q1, d2, x));
+  for(int y : rows2) rows_map21.push_back(nearest(q2, d1, y));
+  const Eigen::MatrixXd R12 = smc::internal::Zoomout_fitter(basis1, mass1, rows1, {}, 1.0).fit(rows_map12, basis2, k, k);
+  const Eigen::MatrixXd R21 = smc::internal::Zoomout_fitter(basis2, mass2, rows2, {}, 1.0).fit(rows_map21, basis1, k, k);
+  BOOST_TEST((c12 - R12).norm() < 1e-6 * R12.norm());
+  BOOST_TEST((c21 - R21).norm() < 1e-6 * R21.norm());
+  // Last size (features weight 0.5): every vertex.
+  auto check = [&](const Eigen::MatrixXd& q, const Eigen::MatrixXd& d, const std::vector<int>& map) {
+    BOOST_TEST_REQUIRE(map.size() == std::size_t(q.rows()));
+    int exact = 0;
+    for(Eigen::Index x = 0; x < q.rows(); ++x) exact += nearest(q, d, x) == map[std::size_t(x)];
+    BOOST_TEST_MESSAGE(exact << " of " << q.rows() << " exact");
+    BOOST_TEST(exact >= 0.99 * double(q.rows()));
+  };
+  check(joint(basis1, R12, F1, 0.5, true), joint(basis2, R21, F2, 0.5, false), map12);
+  check(joint(basis2, R21, F2, 0.5, true), joint(basis1, R12, F1, 0.5, false), map21);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(automatic_initialization)
@@ -468,81 +543,6 @@ BOOST_AUTO_TEST_CASE(landmark_chirality_fields_match_great_circles)
   }
   // One landmark: no pair, no feature.
   BOOST_TEST(smci::landmark_chirality_fields(m, spectrum, fields(m).leftCols(1), 0, weight).cols() == 0);
-}
-
-BOOST_AUTO_TEST_CASE(coupled_zoomout_on_sample_rows_matches_brute_force)
-{
-  // Two coupled ZoomOut sizes (16 -> 20) on sample rows, with features whose weight changes from
-  // the first size to the last: the first step matches the rows only (x -> argmin_y over all y in
-  // the joint embeddings), the fit of those matches gives the final functional maps, and the last
-  // step matches every vertex. Reference: brute force in double precision with the library's fit.
-  const Mesh m1 = bumpy_capsule(16, 4, 10), m2 = transformed(bumpy_capsule(16, 4, 10), pose);
-  const smc::Laplace_beltrami_spectrum s1(m1, params::number_of_eigenpairs(25)),
-      s2(m2, params::number_of_eigenpairs(25));
-  const int k0 = 16, k = 20;
-  const Eigen::MatrixXd basis1 = smc::internal::unit_area_basis(s1, k), basis2 = smc::internal::unit_area_basis(s2, k);
-  const Eigen::VectorXd mass1 = smc::internal::unit_area_mass(s1), mass2 = smc::internal::unit_area_mass(s2);
-  Eigen::MatrixXd C12 = Eigen::MatrixXd::Identity(k0, k0), C21 = Eigen::MatrixXd::Identity(k0, k0);
-  for(int i = 0; i < k0; ++i)
-    for(int j = 0; j < k0; ++j)
-    {
-      C12(i, j) += 0.1 * std::sin(1.0 + 3 * i + 7 * j);
-      C21(i, j) += 0.1 * std::cos(2.0 + 5 * i + 2 * j);
-    }
-  const Eigen::MatrixXd F1 = basis1.middleCols(1, 3).array().square().matrix(),
-                        F2 = basis2.middleCols(1, 3).array().square().matrix();
-  std::vector<int> rows1, rows2;
-  for(int v = 0; v < basis1.rows(); v += 3) rows1.push_back(v);
-  for(int v = 1; v < basis2.rows(); v += 4) rows2.push_back(v);
-  smc::internal::Zoomout_settings zs;
-  zs.final_size = k;
-  zs.step = 4;
-  zs.bijectivity_weight = 0.5;
-  zs.feature_final_ratio = 0.5;  // features weigh 1 at the first size, 0.5 at the last
-  smc::internal::Zoomout_features features;
-  features.source = &F1;
-  features.target = &F2;
-  Eigen::MatrixXd c12 = C12, c21 = C21;
-  std::vector<int> map12, map21;
-  smc::internal::coupled_zoomout_refine<CGAL::Parallel_tag>(basis1, mass1, basis2, mass2, c12, c21, zs, rows1, rows2,
-                                                            {}, map12, map21, features);
-  // The joint embedding of a mesh as query ([Phi C, a Phi, f F]) or as data ([Phi, a Phi C', f F]).
-  const double a = std::sqrt(zs.bijectivity_weight);
-  auto joint = [&](const Eigen::MatrixXd& basis, const Eigen::MatrixXd& C, const Eigen::MatrixXd& F, double f,
-                   bool query) {
-    const Eigen::Index kk = C.rows();
-    const Eigen::MatrixXd phi = basis.leftCols(kk);
-    Eigen::MatrixXd e(basis.rows(), 2 * kk + F.cols());
-    e.leftCols(kk) = query ? Eigen::MatrixXd(phi * C) : phi;
-    e.middleCols(kk, kk) = a * (query ? phi : Eigen::MatrixXd(phi * C));
-    e.rightCols(F.cols()) = f * F;
-    return e;
-  };
-  auto nearest = [](const Eigen::MatrixXd& q, const Eigen::MatrixXd& d, Eigen::Index x) {
-    Eigen::Index best;
-    (d.rowwise() - q.row(x)).rowwise().squaredNorm().minCoeff(&best);
-    return int(best);
-  };
-  // First size (features weight 1): the matches of the rows, then the fits.
-  const Eigen::MatrixXd q1 = joint(basis1, C12, F1, 1.0, true), d2 = joint(basis2, C21, F2, 1.0, false);
-  const Eigen::MatrixXd q2 = joint(basis2, C21, F2, 1.0, true), d1 = joint(basis1, C12, F1, 1.0, false);
-  std::vector<int> rows_map12, rows_map21;
-  for(int x : rows1) rows_map12.push_back(nearest(q1, d2, x));
-  for(int y : rows2) rows_map21.push_back(nearest(q2, d1, y));
-  const Eigen::MatrixXd R12 = smc::internal::Zoomout_fitter(basis1, mass1, rows1, {}, 1.0).fit(rows_map12, basis2, k, k);
-  const Eigen::MatrixXd R21 = smc::internal::Zoomout_fitter(basis2, mass2, rows2, {}, 1.0).fit(rows_map21, basis1, k, k);
-  BOOST_TEST((c12 - R12).norm() < 1e-6 * R12.norm());
-  BOOST_TEST((c21 - R21).norm() < 1e-6 * R21.norm());
-  // Last size (features weight 0.5): every vertex.
-  auto check = [&](const Eigen::MatrixXd& q, const Eigen::MatrixXd& d, const std::vector<int>& map) {
-    BOOST_TEST_REQUIRE(map.size() == std::size_t(q.rows()));
-    int exact = 0;
-    for(Eigen::Index x = 0; x < q.rows(); ++x) exact += nearest(q, d, x) == map[std::size_t(x)];
-    BOOST_TEST_MESSAGE(exact << " of " << q.rows() << " exact");
-    BOOST_TEST(exact >= 0.99 * double(q.rows()));
-  };
-  check(joint(basis1, R12, F1, 0.5, true), joint(basis2, R21, F2, 0.5, false), map12);
-  check(joint(basis2, R21, F2, 0.5, true), joint(basis1, R12, F1, 0.5, false), map21);
 }
 
 BOOST_AUTO_TEST_CASE(row_cache_gives_the_distances_of_new_runs)
@@ -1687,6 +1687,25 @@ BOOST_AUTO_TEST_CASE(extremity_hypotheses_match_another_species)
   BOOST_TEST(fraction_equal(c12, h12) == 1.0);
   BOOST_TEST(fraction_equal(c21, h21) == 1.0);
 #endif
+  // The repair margin: with infinity every hypothesis gets its tear repair, with 0 only the one
+  // of the best first maps (then the kept one). Each pass is counted: the first, one per
+  // hypothesis, and the repair passes tried, so leaving the others unrepaired saves theirs.
+  auto with_margin = [&](double margin) {
+    std::vector<std::size_t> m12, m21;
+    const smc::Automatic_initialization_result m = smc::automatic_initial_maps(
+        f.pair.m1, f.pair.m2, m12, m21,
+        params::matching_settings(settings_with({{"extremity_hypothesis_threshold", 0.0},
+                                                 {"extremity_hypothesis_repair_margin", margin}})));
+    BOOST_TEST_MESSAGE("repair margin " << margin << ": " << m.passes << " passes, hypothesis "
+                       << m.extremity_hypothesis << ", errors " << f.error_12(m12, f.pair.gt_12) << " "
+                       << f.error_21(m21, f.pair.gt_21));
+    return m;
+  };
+  const smc::Automatic_initialization_result every = with_margin(1e6), best_only = with_margin(0.0);
+  BOOST_TEST(every.passes > best_only.passes);
+  BOOST_TEST(best_only.passes >= 4);
+  BOOST_TEST(best_only.extremity_hypothesis >= 1);
+  BOOST_TEST(every.passes >= r.passes);
   // The tolerance against the descriptor maps, where they distort the samples less than the
   // hypothesis (the near-isometric pair): with a huge tolerance the hypothesis replaces them,
   // which measures its distortion d; then it replaces them just above the tolerance
@@ -1911,6 +1930,8 @@ BOOST_AUTO_TEST_CASE(bad_input_is_named)
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_threshold(-1.0)),
                     smc::Invalid_parameter_error);
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_tolerance(-0.5)),
+                    smc::Invalid_parameter_error);
+  BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::extremity_hypothesis_repair_margin(-0.1)),
                     smc::Invalid_parameter_error);
   BOOST_CHECK_THROW(smc::automatic_initial_maps(f.pair.m1, f.pair.m2, m12, m21, params::landmark_distance_weight(-1.0)),
                     smc::Invalid_parameter_error);

@@ -559,7 +559,8 @@ std::string initialization_fingerprint(const smc::Matching_settings& m)
     << s.distortion_repair_passes << ' ' << s.extremity_hypotheses << ' ' << s.extremity_hypothesis_threshold << ' '
     << s.extremity_hypothesis_tolerance << ' ' << s.shot_radius << ' ' << s.landmark_distance_weight << ' '
     << s.landmark_orientation_weight << ' ' << s.landmark_chirality_weight << ' '
-    << s.extremity_hypothesis_distortion_weight << ' ' << s.automatic_maps_comparison_threshold << ' '
+    << s.extremity_hypothesis_distortion_weight << ' ' << s.extremity_hypothesis_repair_margin << ' '
+    << s.automatic_maps_comparison_threshold << ' '
     << s.automatic_maps_maximum_distortion;
   return o.str();
 }

@@ -184,6 +184,9 @@ struct Initialization_settings
   /// The hypothesis kept is the one of lowest SHOT disagreement plus this times its sample
   /// distortion (see try_extremity_hypotheses()).
   double extremity_hypothesis_distortion_weight = matching_defaults().extremity_hypothesis_distortion_weight;
+  /// Only the hypotheses whose first pass ends at most this above the lowest criterion get their
+  /// tear repair and compete (see try_extremity_hypotheses()).
+  double extremity_hypothesis_repair_margin = matching_defaults().extremity_hypothesis_repair_margin;
   /// The weight of the WKS distance between matched extremities in the score of an assignment
   /// (extremity_assignments()): among assignments that keep the proportions alike, it prefers
   /// hands matched to hands rather than to feet, and a head to a head rather than to a jaw.
@@ -261,6 +264,7 @@ inline Initialization_settings initialization_settings(const Matching_settings& 
   s.landmark_orientation_weight = m.landmark_orientation_weight;
   s.landmark_chirality_weight = m.landmark_chirality_weight;
   s.extremity_hypothesis_distortion_weight = m.extremity_hypothesis_distortion_weight;
+  s.extremity_hypothesis_repair_margin = m.extremity_hypothesis_repair_margin;
   s.shot_radius = m.shot_radius;
   s.automatic_maps_comparison_threshold = m.automatic_maps_comparison_threshold;
   s.automatic_maps_maximum_distortion = m.automatic_maps_maximum_distortion;
@@ -375,6 +379,9 @@ inline void check_initialization_settings(const Initialization_settings& s)
   finite_non_negative("landmark_orientation_weight", s.landmark_orientation_weight);
   finite_non_negative("landmark_chirality_weight", s.landmark_chirality_weight);
   finite_non_negative("extremity_hypothesis_distortion_weight", s.extremity_hypothesis_distortion_weight);
+  if(!(s.extremity_hypothesis_repair_margin >= 0))
+    fail("extremity_hypothesis_repair_margin = " + std::to_string(s.extremity_hypothesis_repair_margin) +
+         " must be non-negative (infinity: every hypothesis is repaired)");
 }
 
 /// The number of eigenpairs the initialisation needs.

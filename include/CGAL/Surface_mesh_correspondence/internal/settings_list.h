@@ -108,6 +108,9 @@
   X(extremity_hypothesis_distortion_weight, double, 2.0, 2.0, range_at_least(0), initialization,                 \
     "the extremity hypothesis kept is the one of lowest SHOT disagreement plus this times its sample "            \
     "distortion")                                                                                                  \
+  X(extremity_hypothesis_repair_margin, double, 0.05, 0.05, range_at_least(0), initialization,                     \
+    "only the extremity hypotheses whose first maps score at most this above the best one (SHOT disagreement "     \
+    "plus the weighted sample distortion) get their tear repair and compete")                                      \
   X(tear_threshold, double, 0.06, 0.06, range_above(0), initialization,                                            \
     "a source edge is torn when its images are this far apart (relative to the square root of the target's "      \
     "area)")                                                                                                       \
