@@ -201,10 +201,12 @@ Indexed_mesh initialization_mesh(const TriangleMesh& tm, const NamedParameters& 
 ///   - `extremity_hypotheses`, `extremity_hypothesis_threshold`: on maps whose sample distortion is
 ///     above the threshold (pairs far from isometric, e.g. a gorilla and a man), this many passes
 ///     from the best assignments of the shapes' extremities (tips of limbs, head, tail) as
-///     landmarks, each with its tear repair; among those whose maps distort the samples at most
-///     `extremity_hypothesis_tolerance` (0.5) more than the descriptor-based maps, the one of
-///     lowest SHOT disagreement (radius `shot_radius`) plus `extremity_hypothesis_distortion_weight`
-///     (2) times its sample distortion is kept (see try_extremity_hypotheses()); types `int` and
+///     landmarks; the criterion of their maps is the SHOT disagreement (radius `shot_radius`) plus
+///     `extremity_hypothesis_distortion_weight` (2) times their sample distortion, and those within
+///     `extremity_hypothesis_repair_margin` (0.05) of the best get their tear repair; among the
+///     repaired ones whose maps distort the samples at most `extremity_hypothesis_tolerance` (0.5)
+///     more than the descriptor-based maps, the one of lowest criterion is kept (see
+///     try_extremity_hypotheses()); types `int` and
 ///     `double`; defaults 3 and 0.1 (the best assignments are mostly the true one, its mirror
 ///     twin and assignments with one pair of limbs swapped; each hypothesis pass uses the two fits
 ///     of the repair passes, and with `Parallel_tag` they run concurrently).
