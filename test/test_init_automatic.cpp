@@ -231,28 +231,51 @@ BOOST_AUTO_TEST_CASE(zoomout_fit_solves_the_weighted_least_squares_problem)
   BOOST_TEST((full.fit(all, basis, ks, kt) - projection).norm() < 1e-10 * projection.norm());
 }
 
+namespace {
+
+/// The inputs of the coupled ZoomOut tests: the bumpy capsule and its posed copy, their unit-area
+/// bases (20 functions) and masses, maps near the identity (k0 x k0, plus a perturbation of size
+/// `perturbation`, not inverse to each other) and features (smooth functions of the embedding,
+/// three columns per mesh).
+struct Coupled_zoomout_pair
+{
+  static constexpr int k = 20;
+  Eigen::MatrixXd basis1, basis2, C12, C21, F1, F2;
+  Eigen::VectorXd mass1, mass2;
+
+  Coupled_zoomout_pair(int k0, double perturbation)
+  {
+    const Mesh m1 = bumpy_capsule(16, 4, 10), m2 = transformed(bumpy_capsule(16, 4, 10), pose);
+    const smc::Laplace_beltrami_spectrum s1(m1, params::number_of_eigenpairs(25)),
+        s2(m2, params::number_of_eigenpairs(25));
+    basis1 = smc::internal::unit_area_basis(s1, k);
+    basis2 = smc::internal::unit_area_basis(s2, k);
+    mass1 = smc::internal::unit_area_mass(s1);
+    mass2 = smc::internal::unit_area_mass(s2);
+    C12 = Eigen::MatrixXd::Identity(k0, k0);
+    C21 = Eigen::MatrixXd::Identity(k0, k0);
+    for(int i = 0; i < k0; ++i)
+      for(int j = 0; j < k0; ++j)
+      {
+        C12(i, j) += perturbation * std::sin(1.0 + 3 * i + 7 * j);
+        C21(i, j) += perturbation * std::cos(2.0 + 5 * i + 2 * j);
+      }
+    F1 = basis1.middleCols(1, 3).array().square().matrix();
+    F2 = basis2.middleCols(1, 3).array().square().matrix();
+  }
+};
+
+} // namespace
+
 BOOST_AUTO_TEST_CASE(coupled_zoomout_finds_the_nearest_points_of_the_joint_embeddings)
 {
   // One coupled ZoomOut step (initial size = final size: the maps of every vertex) against brute
   // force in the joint embeddings it reduces: x -> argmin_y |[Phi_1(x) C12, a Phi_1(x), f F_1(x)]
   // - [Phi_2(y), a Phi_2(y) C21, f F_2(y)]|^2, in double precision.
-  const Mesh m1 = bumpy_capsule(16, 4, 10), m2 = transformed(bumpy_capsule(16, 4, 10), pose);
-  const smc::Laplace_beltrami_spectrum s1(m1, params::number_of_eigenpairs(25)),
-      s2(m2, params::number_of_eigenpairs(25));
-  const int k = 20;
-  const Eigen::MatrixXd basis1 = smc::internal::unit_area_basis(s1, k), basis2 = smc::internal::unit_area_basis(s2, k);
-  const Eigen::VectorXd mass1 = smc::internal::unit_area_mass(s1), mass2 = smc::internal::unit_area_mass(s2);
-  // Maps near the identity with a perturbation, not inverse to each other.
-  Eigen::MatrixXd C12 = Eigen::MatrixXd::Identity(k, k), C21 = Eigen::MatrixXd::Identity(k, k);
-  for(int i = 0; i < k; ++i)
-    for(int j = 0; j < k; ++j)
-    {
-      C12(i, j) += 0.15 * std::sin(1.0 + 3 * i + 7 * j);
-      C21(i, j) += 0.15 * std::cos(2.0 + 5 * i + 2 * j);
-    }
-  // Features: smooth functions of the embedding (three columns per mesh).
-  const Eigen::MatrixXd F1 = basis1.middleCols(1, 3).array().square().matrix(),
-                        F2 = basis2.middleCols(1, 3).array().square().matrix();
+  const int k = Coupled_zoomout_pair::k;
+  const Coupled_zoomout_pair p(k, 0.15);
+  const Eigen::MatrixXd &basis1 = p.basis1, &basis2 = p.basis2, &C12 = p.C12, &C21 = p.C21, &F1 = p.F1, &F2 = p.F2;
+  const Eigen::VectorXd &mass1 = p.mass1, &mass2 = p.mass2;
   for(const double bijectivity : {1.0, 0.3})
     for(const bool with_features : {false, true})
     {
@@ -305,21 +328,10 @@ BOOST_AUTO_TEST_CASE(coupled_zoomout_on_sample_rows_matches_brute_force)
   // the first size to the last: the first step matches the rows only (x -> argmin_y over all y in
   // the joint embeddings), the fit of those matches gives the final functional maps, and the last
   // step matches every vertex. Reference: brute force in double precision with the library's fit.
-  const Mesh m1 = bumpy_capsule(16, 4, 10), m2 = transformed(bumpy_capsule(16, 4, 10), pose);
-  const smc::Laplace_beltrami_spectrum s1(m1, params::number_of_eigenpairs(25)),
-      s2(m2, params::number_of_eigenpairs(25));
-  const int k0 = 16, k = 20;
-  const Eigen::MatrixXd basis1 = smc::internal::unit_area_basis(s1, k), basis2 = smc::internal::unit_area_basis(s2, k);
-  const Eigen::VectorXd mass1 = smc::internal::unit_area_mass(s1), mass2 = smc::internal::unit_area_mass(s2);
-  Eigen::MatrixXd C12 = Eigen::MatrixXd::Identity(k0, k0), C21 = Eigen::MatrixXd::Identity(k0, k0);
-  for(int i = 0; i < k0; ++i)
-    for(int j = 0; j < k0; ++j)
-    {
-      C12(i, j) += 0.1 * std::sin(1.0 + 3 * i + 7 * j);
-      C21(i, j) += 0.1 * std::cos(2.0 + 5 * i + 2 * j);
-    }
-  const Eigen::MatrixXd F1 = basis1.middleCols(1, 3).array().square().matrix(),
-                        F2 = basis2.middleCols(1, 3).array().square().matrix();
+  const int k = Coupled_zoomout_pair::k;
+  const Coupled_zoomout_pair p(16, 0.1);
+  const Eigen::MatrixXd &basis1 = p.basis1, &basis2 = p.basis2, &C12 = p.C12, &C21 = p.C21, &F1 = p.F1, &F2 = p.F2;
+  const Eigen::VectorXd &mass1 = p.mass1, &mass2 = p.mass2;
   std::vector<int> rows1, rows2;
   for(int v = 0; v < basis1.rows(); v += 3) rows1.push_back(v);
   for(int v = 1; v < basis2.rows(); v += 4) rows2.push_back(v);
