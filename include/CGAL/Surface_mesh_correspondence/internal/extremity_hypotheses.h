@@ -311,9 +311,10 @@ inline Initialization_settings extremity_hypothesis_settings(const Initializatio
 
 /// The extremity hypotheses of automatic_initial_maps(): when the sample distortion of the maps
 /// (pair_distortion(), stored in the result) is above `extremity_hypothesis_threshold`, a pass
-/// (single_pass_initial_maps() with all the fits, in the orientation of the meshes) and its tear
-/// repair (repair_torn_maps()) run from each of the `extremity_hypotheses` best assignments of the
-/// extremities of both shapes (extremity_assignments()) as anchor landmarks, added to the user's.
+/// (single_pass_initial_maps() with all the fits, in the orientation of the meshes) runs from each
+/// of the `extremity_hypotheses` best assignments of the extremities of both shapes
+/// (extremity_assignments()) as anchor landmarks, added to the user's, and then, for some of them,
+/// the tear repair (repair_torn_maps()).
 /// A hypothesis's criterion is the SHOT disagreement of its maps (shot_disagreement(), both
 /// directions, on the ZoomOut samples, SHOT radius `shot_radius`) plus
 /// `extremity_hypothesis_distortion_weight` times their sample distortion; the tear repair runs
@@ -393,7 +394,6 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
     std::vector<std::size_t> map_12, map_21;
     Automatic_initialization_result result;
     double distortion = 0, disagreement = std::numeric_limits<double>::quiet_NaN();
-    bool repaired = false;
   };
   const std::size_t count = assignments.size();
   std::vector<Hypothesis_maps> runs(count);
@@ -453,7 +453,6 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
     if(count == 1 || criterion(h) <= best + s.extremity_hypothesis_repair_margin) competing.push_back(h);
   for_each_hypothesis(competing, [&](std::size_t h, Initialization_pass_cache& pass_cache) {
     Hypothesis_maps& r = runs[h];
-    r.repaired = true;
     r.result = repair_torn_maps<ConcurrencyTag>(shape1, shape2, settings[h], r.map_12, r.map_21, r.result, &pass_cache);
     if(r.result.repair_passes > 0) score(h, pass_cache);  // repaired maps were kept
   });
@@ -471,12 +470,14 @@ bool try_extremity_hypotheses(const Initialization_shape& shape1, const Initiali
       kept = h;
   if(s.verbose)
     for(std::size_t h = 0; h < assignments.size(); ++h)
+    {
+      const bool competed = std::find(competing.begin(), competing.end(), h) != competing.end();
       std::cerr << "automatic_initial_maps: extremity hypothesis " << h + 1 << " (score " << assignments[h].score
-                << ", " << (runs[h].repaired ? std::to_string(runs[h].result.repair_passes) : "no")
+                << ", " << (competed ? std::to_string(runs[h].result.repair_passes) : "no")
                 << " tear repair passes): distortion " << runs[h].distortion << ", SHOT disagreement "
                 << runs[h].disagreement << ", criterion " << criterion(h)
-                << (kept && *kept == h ? " (kept)" : runs[h].repaired ? " (discarded)" : " (not repaired)")
-                << "\n";
+                << (kept && *kept == h ? " (kept)" : competed ? " (discarded)" : " (not repaired)") << "\n";
+    }
   double functional_map_seconds = result.functional_map_seconds, zoomout_seconds = result.zoomout_seconds;
   int passes = result.passes;
   for(const Hypothesis_maps& run : runs)
